@@ -1,0 +1,46 @@
+#pragma once
+// Precomputed distance and bearing from a sensor to the centres of the cells around it, so that
+// rasterising a sonar cone needs no per-cell sqrt or atan2 (the lookup-table inserter of
+// Cartographer's 2-D grids). The sensor's position inside its cell is quantised to a
+// `subdivisions` x `subdivisions` lattice of sub-cell centres, so distances are exact to within
+// half a sub-cell diagonal: cellSize / (subdivisions * sqrt 2), 0.9 cm at 5 cm cells.
+
+#include <memory>
+#include <vector>
+
+namespace sg {
+
+class BeamTables {
+ public:
+  struct Entry {
+    float distance;  // metres, sensor to cell centre
+    float bearing;   // radians in [-pi, pi], world frame
+  };
+
+  static constexpr int kDefaultSubdivisions = 4;
+
+  BeamTables(double cellSize, int radiusCells, int subdivisions = kDefaultSubdivisions);
+
+  double cellSize() const { return cellSize_; }
+  int radius() const { return radius_; }
+  int side() const { return 2 * radius_ + 1; }
+  int subdivisions() const { return subdivisions_; }
+
+  // The table for a sensor in sub-cell (qx, qy); entry (dx, dy) is at [(dy + R) * side + dx + R]
+  // for the cell dx columns and dy rows away from the sensor's cell.
+  const Entry* table(int qx, int qy) const {
+    return entries_.data() + static_cast<std::size_t>(qy * subdivisions_ + qx) * tableSize_;
+  }
+
+  // Tables for `cellSize` that reach at least `reach` metres, shared between mappers (thread-safe).
+  static std::shared_ptr<const BeamTables> shared(double cellSize, double reach);
+
+ private:
+  double cellSize_;
+  int radius_;
+  int subdivisions_;
+  std::size_t tableSize_;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace sg

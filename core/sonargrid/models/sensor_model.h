@@ -1,0 +1,59 @@
+#pragma once
+// An inverse sensor model turns one sonar reading into per-cell evidence (a Footprint). It knows
+// nothing of how the grid stores or combines values: that is the UpdateRule's job.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "sonargrid/beam_tables.h"
+#include "sonargrid/footprint.h"
+#include "sonargrid/grid_spec.h"
+#include "sonargrid/parameters.h"
+
+namespace sg {
+
+struct ModelInfo {
+  std::string name;   // registry and CLI name, e.g. "hpf"
+  std::string title;  // e.g. "Moravec–Elfes heuristic probability functions (HPF)"
+  std::string source; // paper and section
+  std::vector<ParameterSpec> parameters;
+};
+
+// Where a point falls for a reading (paper 002 §3.1, Figure 1).
+enum class BeamRegion { Outside, Occupied /* Region I */, Empty /* Region II */ };
+
+// The model's value at one point, as a Footprint cell carries it.
+struct ModelValue {
+  BeamRegion region = BeamRegion::Outside;
+  double empty = 0.0;
+  double occupied = 0.0;
+  double probability = 0.5;
+};
+
+class SensorModel {
+ public:
+  virtual ~SensorModel() = default;
+
+  virtual const ModelInfo& info() const = 0;
+  // Reads this model's parameters from `params` (which may hold others too).
+  virtual void configure(const ParameterSet& params) = 0;
+
+  // The value at distance `delta` (m) from the sensor and `theta` (rad) off its acoustic axis, for
+  // a reading of `range` metres (Reading::kNoEcho for none) from a transducer of `maxRange`.
+  virtual ModelValue evaluate(double delta, double theta, double range, double maxRange) const = 0;
+
+  // How far from the sensor this model may write for a transducer of `maxRange` (sizes tables).
+  virtual double reach(double maxRange) const = 0;
+
+  // Appends every cell the reading updates to `out`, in a fixed order, each cell at most once.
+  virtual void footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+                         Footprint& out) const = 0;
+};
+
+// The registry: one place that knows every model.
+std::vector<std::string> sensorModelNames();
+std::unique_ptr<SensorModel> makeSensorModel(const std::string& name);  // nullptr when unknown
+const ModelInfo& sensorModelInfo(const std::string& name);              // throws when unknown
+
+}  // namespace sg

@@ -1,0 +1,17 @@
+#include "sonargrid/occupancy_map.h"
+
+#include <algorithm>
+
+namespace sg {
+
+std::size_t OccupancyMap::filledCount() const {
+  return static_cast<std::size_t>(std::count(filled.begin(), filled.end(), std::uint8_t{1}));
+}
+
+std::vector<std::size_t> OccupancyMap::levelHistogram() const {
+  std::vector<std::size_t> h(kLevels, 0);
+  for (std::uint8_t l : level) ++h[l < kLevels ? l : kLevels - 1];
+  return h;
+}
+
+}  // namespace sg

@@ -1,0 +1,35 @@
+#pragma once
+// An immutable snapshot of a built map: what views, exporters and metrics read. Every update rule
+// yields the same layers (notes/models-and-metrics.md, "Certainty values").
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sonargrid/grid_spec.h"
+
+namespace sg {
+
+inline constexpr int kLevels = 16;  // certainty values 0..15 (paper 000 §4.3)
+
+struct OccupancyMap {
+  GridSpec spec;
+  std::string model;  // registry names, e.g. "hpf"
+  std::string rule;   // e.g. "addition"
+  std::vector<double> probability;    // p(occupied) in [0, 1]; 0.5 where nothing is known
+  std::vector<double> native;         // the rule's own value (e.g. log-odds, HIMM CV, Occ−Emp)
+  std::vector<std::uint8_t> level;    // 0..15, monotonic in the rule's value
+  std::vector<std::uint8_t> filled;   // 1 where occupied evidence beats free evidence
+  std::vector<std::uint8_t> observed; // 1 where at least one reading wrote the cell
+
+  std::size_t filledCount() const;
+  std::vector<std::size_t> levelHistogram() const;  // kLevels counts over all cells
+};
+
+// Level of a probability: round(15 p), the convention every exporter and importer shares.
+inline std::uint8_t levelOfProbability(double p) {
+  const double v = 15.0 * (p < 0.0 ? 0.0 : (p > 1.0 ? 1.0 : p));
+  return static_cast<std::uint8_t>(v + 0.5);
+}
+
+}  // namespace sg

@@ -1,0 +1,52 @@
+#pragma once
+// A planar pose (x, y, heading) in the world frame: metres and radians, counter-clockwise angles,
+// x forward on the robot (notes/models-and-metrics.md, "Conventions").
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <numbers>
+
+namespace sg {
+
+using Position = Eigen::Vector2d;
+
+// Wraps an angle to [-pi, pi).
+inline double wrapAngle(double a) {
+  constexpr double kTwoPi = 2.0 * std::numbers::pi;
+  a = std::fmod(a + std::numbers::pi, kTwoPi);
+  if (a < 0.0) a += kTwoPi;
+  return a - std::numbers::pi;
+}
+
+inline double degToRad(double deg) { return deg * std::numbers::pi / 180.0; }
+inline double radToDeg(double rad) { return rad * 180.0 / std::numbers::pi; }
+
+struct Pose2D {
+  Position position{0.0, 0.0};
+  double heading = 0.0;  // radians
+
+  Pose2D() = default;
+  Pose2D(double x, double y, double theta) : position(x, y), heading(theta) {}
+
+  double x() const { return position.x(); }
+  double y() const { return position.y(); }
+
+  // This pose composed with a pose expressed in its own frame (e.g. robot pose * sonar mounting).
+  Pose2D compose(const Pose2D& local) const {
+    const Eigen::Rotation2Dd r(heading);
+    Pose2D out;
+    out.position = position + r * local.position;
+    out.heading = wrapAngle(heading + local.heading);
+    return out;
+  }
+
+  // A point given in this pose's frame, expressed in the world frame.
+  Position transform(const Position& local) const { return position + Eigen::Rotation2Dd(heading) * local; }
+
+  bool operator==(const Pose2D& o) const {
+    return position == o.position && heading == o.heading;
+  }
+};
+
+}  // namespace sg
