@@ -1,1 +1,925 @@
-// placeholder: replaced by its owner
+#include "sonargrid/io/sglog.h"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <istream>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <ostream>
+#include <random>
+#include <stdexcept>
+#include <string_view>
+#include <system_error>
+#include <utility>
+#include <vector>
+
+namespace sg {
+namespace {
+
+// docs/formats.md is the specification of everything below; keep the two in step.
+
+// A cap on line length keeps a corrupt or hostile file (one endless "line") from being buffered
+// whole before we can say anything about it.
+constexpr std::size_t kMaxLineBytes = 64 * 1024;
+// Reading::sonar is 16 bits wide.
+constexpr std::size_t kMaxSonars = 65536;
+constexpr std::size_t kMaxRobotNameBytes = 64;
+// Long enough to recognise a token in an error message, short enough to keep the message on a line.
+constexpr std::size_t kMaxShownBytes = 40;
+
+constexpr std::string_view kMagic = "sglog";
+constexpr std::string_view kNone = "none";
+constexpr std::string_view kEndHeader = "end_header";
+constexpr std::string_view kScan = "scan";
+constexpr std::string_view kReading = "r";
+
+std::string osReason(int err) {
+  return std::error_code(err, std::generic_category()).message();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Shared validity rules: the writer refuses exactly what the reader would reject, so that a file
+// we write can always be read back.
+
+bool validRobotName(std::string_view s) {
+  if (s.empty() || s.size() > kMaxRobotNameBytes) return false;
+  return std::all_of(s.begin(), s.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '.' || c == '-';
+  });
+}
+
+bool validAperture(double a) {
+  return std::isfinite(a) && a > 0.0 && a <= std::numbers::pi;
+}
+
+// Length of the well-formed UTF-8 sequence (RFC 3629: no overlongs, no surrogates, <= U+10FFFF)
+// of two or more bytes that starts at p, or 0 when there is none.
+std::size_t utf8Sequence(const unsigned char* p, std::size_t n) {
+  const unsigned char c = p[0];
+  std::size_t len = 0;
+  unsigned char lo = 0x80;
+  unsigned char hi = 0xBF;
+  if (c >= 0xC2 && c <= 0xDF) {
+    len = 2;
+  } else if (c >= 0xE0 && c <= 0xEF) {
+    len = 3;
+    if (c == 0xE0) lo = 0xA0;
+    if (c == 0xED) hi = 0x9F;
+  } else if (c >= 0xF0 && c <= 0xF4) {
+    len = 4;
+    if (c == 0xF0) lo = 0x90;
+    if (c == 0xF4) hi = 0x8F;
+  } else {
+    return 0;
+  }
+  if (n < len || p[1] < lo || p[1] > hi) return 0;
+  for (std::size_t k = 2; k < len; ++k) {
+    if (p[k] < 0x80 || p[k] > 0xBF) return 0;
+  }
+  return len;
+}
+
+bool isControl(unsigned char c) {
+  return (c < 0x20 && c != '\t') || c == 0x7F;
+}
+
+// Offset of the first byte that is not printable UTF-8 text (tab allowed), or npos.
+std::size_t firstBadByte(std::string_view s) {
+  const auto* p = reinterpret_cast<const unsigned char*>(s.data());
+  const std::size_t n = s.size();
+  std::size_t i = 0;
+  while (i < n) {
+    if (p[i] < 0x80) {
+      if (isControl(p[i])) return i;
+      ++i;
+    } else {
+      const std::size_t len = utf8Sequence(p + i, n - i);
+      if (len == 0) return i;
+      i += len;
+    }
+  }
+  return std::string_view::npos;
+}
+
+char hexDigit(unsigned v) {
+  return "0123456789abcdef"[v & 0xF];
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reading
+
+// Where the bytes come from: an istream (parseSglog) or a C file (readSglog, because it reports
+// errno reliably).
+class ByteSource {
+ public:
+  virtual ~ByteSource() = default;
+  // Reads up to n bytes; 0 means end of input. Throws LogError when the input cannot be read.
+  virtual std::size_t read(char* dst, std::size_t n) = 0;
+};
+
+class StreamSource : public ByteSource {
+ public:
+  StreamSource(std::istream& in, const std::string& file) : in_(in), file_(file) {}
+  std::size_t read(char* dst, std::size_t n) override {
+    in_.read(dst, static_cast<std::streamsize>(n));
+    const auto got = static_cast<std::size_t>(in_.gcount());
+    if (in_.bad()) throw LogError(file_, 0, "", "cannot read: the input stream failed");
+    return got;
+  }
+
+ private:
+  std::istream& in_;
+  const std::string& file_;
+};
+
+class FileSource : public ByteSource {
+ public:
+  FileSource(std::FILE* f, const std::string& file) : f_(f), file_(file) {}
+  std::size_t read(char* dst, std::size_t n) override {
+    const std::size_t got = std::fread(dst, 1, n, f_);
+    if (got == 0 && std::ferror(f_))
+      throw LogError(file_, 0, "", "cannot read: " + osReason(errno));
+    return got;
+  }
+
+ private:
+  std::FILE* f_;
+  const std::string& file_;
+};
+
+// Splits the input into lines without copying them, in one pass, and enforces kMaxLineBytes before
+// buffering more than that.
+class LineReader {
+ public:
+  LineReader(ByteSource& src, const std::string& file)
+      : src_(src), file_(file), buf_(kMaxLineBytes + 1 + kChunkBytes) {}
+
+  // The next line without its '\n'; valid until the following call. False at end of input.
+  bool next(std::string_view& line) {
+    std::size_t scanFrom = begin_;
+    for (;;) {
+      char* base = buf_.data();
+      const void* nl = std::memchr(base + scanFrom, '\n', end_ - scanFrom);
+      if (nl != nullptr) {
+        const auto pos = static_cast<std::size_t>(static_cast<const char*>(nl) - base);
+        ++line_;
+        if (pos - begin_ > kMaxLineBytes) throwTooLong();
+        line = std::string_view(base + begin_, pos - begin_);
+        begin_ = pos + 1;
+        return true;
+      }
+      if (end_ - begin_ > kMaxLineBytes) {
+        ++line_;
+        throwTooLong();
+      }
+      if (eof_) {
+        if (begin_ == end_) return false;
+        ++line_;  // a last line without '\n'
+        line = std::string_view(base + begin_, end_ - begin_);
+        begin_ = end_;
+        return true;
+      }
+      // Keep the partial line and refill behind it; at most kMaxLineBytes move, so this stays
+      // linear.
+      if (begin_ > 0) {
+        std::memmove(base, base + begin_, end_ - begin_);
+        end_ -= begin_;
+        begin_ = 0;
+      }
+      scanFrom = end_;
+      const std::size_t got = src_.read(base + end_, buf_.size() - end_);
+      if (got == 0) {
+        eof_ = true;
+      } else {
+        end_ += got;
+      }
+    }
+  }
+
+  std::size_t lineNumber() const { return line_; }
+
+ private:
+  static constexpr std::size_t kChunkBytes = 256 * 1024;
+
+  [[noreturn]] void throwTooLong() const {
+    throw LogError(file_, line_, "",
+                   "expected a line of at most " + std::to_string(kMaxLineBytes) +
+                       " bytes, found a longer one");
+  }
+
+  ByteSource& src_;
+  const std::string& file_;
+  std::vector<char> buf_;
+  std::size_t begin_ = 0;
+  std::size_t end_ = 0;
+  bool eof_ = false;
+  std::size_t line_ = 0;
+};
+
+// The whitespace-separated fields of one line, up to a trailing comment.
+struct Fields {
+  static constexpr std::size_t kMaxKept = 12;  // longer lines are errors; we only need their count
+  std::array<std::string_view, kMaxKept> at{};
+  std::size_t count = 0;
+
+  std::string_view operator[](std::size_t i) const { return at[i]; }
+};
+
+bool isBlank(char c) {
+  return c == ' ' || c == '\t';
+}
+
+void splitFields(std::string_view line, Fields& f) {
+  f.count = 0;
+  const char* p = line.data();
+  const char* end = p + line.size();
+  for (;;) {
+    while (p != end && isBlank(*p)) ++p;
+    if (p == end || *p == '#') return;
+    const char* start = p;
+    while (p != end && !isBlank(*p)) ++p;
+    if (f.count < Fields::kMaxKept) {
+      f.at[f.count] = std::string_view(start, static_cast<std::size_t>(p - start));
+    }
+    ++f.count;
+  }
+}
+
+// A token as shown inside '...' in an error message: shortened, never cut inside a UTF-8 sequence.
+std::string shown(std::string_view token) {
+  if (token.size() <= kMaxShownBytes) return std::string(token);
+  std::size_t n = kMaxShownBytes;
+  while (n > 0 && (static_cast<unsigned char>(token[n]) & 0xC0) == 0x80) --n;
+  return std::string(token.substr(0, n)) + "...";
+}
+
+std::string found(std::string_view token) {
+  return "found '" + shown(token) + "'";
+}
+
+bool parseFinite(std::string_view t, double& v) {
+  const char* end = t.data() + t.size();
+  const auto [ptr, ec] = std::from_chars(t.data(), end, v);
+  return ec == std::errc() && ptr == end && std::isfinite(v);
+}
+
+bool parseUnsigned(std::string_view t, unsigned long& v) {
+  const char* end = t.data() + t.size();
+  const auto [ptr, ec] = std::from_chars(t.data(), end, v, 10);
+  return ec == std::errc() && ptr == end;
+}
+
+class Parser {
+ public:
+  Parser(ByteSource& src, const std::string& file) : file_(file), lines_(src, file) {}
+
+  Dataset run() {
+    readMagic();
+    readHeader();
+    readBody();
+    return std::move(ds_);
+  }
+
+ private:
+  enum HeaderKey { kName, kRobot, kAperture, kMinRange, kMaxRange, kKeyCount };
+  static constexpr std::array<std::string_view, kKeyCount> kKeyNames{"name", "robot", "aperture",
+                                                                     "min_range", "max_range"};
+
+  [[noreturn]] void fail(std::string_view field, const std::string& message) const {
+    throw LogError(file_, lines_.lineNumber(), std::string(field), message);
+  }
+
+  // Reads the next line, checks its bytes, drops a CRLF's '\r' and splits it. False at the end.
+  bool nextLine() {
+    if (!lines_.next(line_)) return false;
+    if (!line_.empty() && line_.back() == '\r') line_.remove_suffix(1);
+    const std::size_t bad = firstBadByte(line_);
+    if (bad != std::string_view::npos) {
+      const auto byte = static_cast<unsigned char>(line_[bad]);
+      std::string hex = "0x";
+      hex += hexDigit(byte >> 4U);
+      hex += hexDigit(byte);
+      fail("", "expected UTF-8 text, found byte " + hex + " at column " + std::to_string(bad + 1));
+    }
+    splitFields(line_, fields_);
+    return true;
+  }
+
+  void expectCount(std::size_t n, std::string_view what) const {
+    const std::size_t got = fields_.count - 1;
+    if (got == n) return;
+    std::string message = "expected " + std::to_string(n) + (n == 1 ? " field" : " fields") +
+                          " after '" + std::string(fields_[0]) + "'";
+    if (!what.empty()) message += " (" + std::string(what) + ")";
+    fail(fields_[0], message + ", found " + std::to_string(got));
+  }
+
+  double finite(std::size_t i, std::string_view field, std::string_view expected) const {
+    double v = 0.0;
+    if (!parseFinite(fields_[i], v))
+      fail(field, "expected " + std::string(expected) + ", " + found(fields_[i]));
+    return v;
+  }
+
+  void readMagic() {
+    const std::string expectedLine =
+        "'" + std::string(kMagic) + " " + std::to_string(kSglogVersion) + "'";
+    if (!nextLine())
+      throw LogError(file_, 0, "", "empty file (expected " + expectedLine + " on the first line)");
+    // Editors on some systems start UTF-8 files with a byte order mark; it carries no meaning.
+    constexpr std::string_view kBom = "\xEF\xBB\xBF";
+    if (line_.substr(0, kBom.size()) == kBom) {
+      line_.remove_prefix(kBom.size());
+      splitFields(line_, fields_);
+    }
+    if (fields_.count == 0 || fields_[0] != kMagic) {
+      fail("magic", "expected " + expectedLine + " as the first line, " +
+                        (line_.empty() ? std::string("found an empty line") : found(line_)));
+    }
+    if (fields_.count == 1)
+      fail("version", "expected a version number after 'sglog', found nothing");
+    unsigned long version = 0;
+    if (!parseUnsigned(fields_[1], version)) {
+      fail("version", "expected a version number after 'sglog', " + found(fields_[1]));
+    }
+    if (version != static_cast<unsigned long>(kSglogVersion)) {
+      fail("version", "expected version " + std::to_string(kSglogVersion) +
+                          " (the only version this reader supports), " + found(fields_[1]));
+    }
+    expectCount(1, "version");
+  }
+
+  void readHeader() {
+    for (;;) {
+      if (!nextLine()) {
+        throw LogError(
+            file_, 0, "",
+            "truncated: the file ends inside the header (expected an 'end_header' line)");
+      }
+      if (fields_.count == 0) continue;
+      const std::string_view key = fields_[0];
+      if (key == kEndHeader) {
+        expectCount(0, "");
+        finishHeader();
+        return;
+      }
+      if (key == "sonar") {
+        readSonar();
+        continue;
+      }
+      const auto it = std::find(kKeyNames.begin(), kKeyNames.end(), key);
+      if (it == kKeyNames.end()) {
+        fail("",
+             "expected a header record (name, robot, aperture, min_range, max_range, sonar or "
+             "end_header), " +
+                 found(key));
+      }
+      const auto k = static_cast<std::size_t>(it - kKeyNames.begin());
+      if (keyLine_[k] != 0) {
+        fail(key, "expected one '" + std::string(key) +
+                      "' line, found a second (the first is line " + std::to_string(keyLine_[k]) +
+                      ")");
+      }
+      keyLine_[k] = lines_.lineNumber();
+      switch (static_cast<HeaderKey>(k)) {
+        case kName:
+          readName();
+          break;
+        case kRobot:
+          expectCount(1, "a preset name or 'custom'");
+          if (!validRobotName(fields_[1])) {
+            fail(
+                "robot",
+                "expected a preset name or 'custom' (1 to 64 characters from A-Z a-z 0-9 _ . -), " +
+                    found(fields_[1]));
+          }
+          ds_.ring.robot = std::string(fields_[1]);
+          break;
+        case kAperture:
+          expectCount(1, "full cone angle in radians");
+          if (!parseFinite(fields_[1], ds_.ring.apertureRad) ||
+              !validAperture(ds_.ring.apertureRad)) {
+            fail("aperture", "expected an angle in radians > 0 and <= pi, " + found(fields_[1]));
+          }
+          break;
+        case kMinRange:
+          readMinRange();
+          break;
+        case kMaxRange:
+          readMaxRange();
+          break;
+        case kKeyCount:
+          break;
+      }
+    }
+  }
+
+  void readName() {
+    // The name is free text, so it is quoted rather than split into fields.
+    const char* p = fields_[0].data() + fields_[0].size();
+    const char* end = line_.data() + line_.size();
+    while (p != end && isBlank(*p)) ++p;
+    if (p == end || *p != '"') {
+      fail("name", "expected a quoted string such as \"Room 3\", " +
+                       (p == end ? std::string("found nothing")
+                                 : found(std::string_view(p, static_cast<std::size_t>(end - p)))));
+    }
+    ++p;
+    std::string name;
+    for (;;) {
+      if (p == end) fail("name", "expected a closing '\"', found the end of the line");
+      const char c = *p++;
+      if (c == '"') break;
+      if (c != '\\') {
+        name += c;
+        continue;
+      }
+      if (p == end) fail("name", "expected an escape after '\\', found the end of the line");
+      const char e = *p++;
+      switch (e) {
+        case '\\':
+        case '"':
+          name += e;
+          break;
+        case 'n':
+          name += '\n';
+          break;
+        case 'r':
+          name += '\r';
+          break;
+        case 't':
+          name += '\t';
+          break;
+        case 'x': {
+          unsigned value = 0;
+          if (end - p < 2 || std::from_chars(p, p + 2, value, 16).ptr != p + 2) {
+            const auto n = static_cast<std::size_t>(std::min<std::ptrdiff_t>(end - p, 2));
+            fail("name", "expected two hex digits after '\\x', " + found(std::string_view(p, n)));
+          }
+          name += static_cast<char>(value);
+          p += 2;
+          break;
+        }
+        default:
+          fail("name", "expected an escape \\\\, \\\", \\n, \\r, \\t or \\xHH after '\\', " +
+                           found(std::string_view(p - 1, 1 + utf8Tail(p - 1, end))));
+      }
+    }
+    while (p != end && isBlank(*p)) ++p;
+    if (p != end && *p != '#') {
+      fail("name", "expected nothing after the closing '\"', " +
+                       found(std::string_view(p, static_cast<std::size_t>(end - p))));
+    }
+    ds_.name = std::move(name);
+  }
+
+  // How many continuation bytes follow the lead byte at p (so an error shows whole characters).
+  static std::size_t utf8Tail(const char* p, const char* end) {
+    std::size_t n = 0;
+    while (p + 1 + n != end && (static_cast<unsigned char>(p[1 + n]) & 0xC0) == 0x80) ++n;
+    return n;
+  }
+
+  void readMinRange() {
+    expectCount(1, "metres");
+    double v = 0.0;
+    const bool haveMax = keyLine_[kMaxRange] != 0;
+    if (haveMax) {
+      const std::string expected =
+          "a number of metres >= 0 and < max_range " + number(ds_.ring.maxRange);
+      if (!parseFinite(fields_[1], v) || v < 0.0 || v >= ds_.ring.maxRange) {
+        fail("min_range", "expected " + expected + ", " + found(fields_[1]));
+      }
+    } else if (!parseFinite(fields_[1], v) || v < 0.0) {
+      fail("min_range", "expected a number of metres >= 0, " + found(fields_[1]));
+    }
+    ds_.ring.minRange = v;
+  }
+
+  void readMaxRange() {
+    expectCount(1, "metres");
+    double v = 0.0;
+    const bool haveMin = keyLine_[kMinRange] != 0;
+    if (haveMin) {
+      const std::string expected = "a number of metres > min_range " + number(ds_.ring.minRange);
+      if (!parseFinite(fields_[1], v) || v <= ds_.ring.minRange) {
+        fail("max_range", "expected " + expected + ", " + found(fields_[1]));
+      }
+    } else if (!parseFinite(fields_[1], v) || v <= 0.0) {
+      fail("max_range", "expected a number of metres > 0, " + found(fields_[1]));
+    }
+    ds_.ring.maxRange = v;
+  }
+
+  static std::string number(double v) {
+    std::array<char, 32> buf{};
+    const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v);
+    return std::string(buf.data(), r.ptr);
+  }
+
+  void readSonar() {
+    expectCount(4, "index x y heading");
+    const std::size_t want = ds_.ring.sonars.size();
+    unsigned long index = 0;
+    const bool isIndex = parseUnsigned(fields_[1], index);
+    if (isIndex && index < want) {
+      fail("index", "expected sonar index " + std::to_string(want) + ", " + found(fields_[1]) +
+                        ", a duplicate of line " + std::to_string(sonarLines_[index]));
+    }
+    if (!isIndex || index != want) {
+      fail("index", "expected sonar index " + std::to_string(want) +
+                        " (sonars are listed 0, 1, 2, ... in order), " + found(fields_[1]));
+    }
+    if (want >= kMaxSonars) {
+      fail("index",
+           "expected at most " + std::to_string(kMaxSonars) + " sonars, " + found(fields_[1]));
+    }
+    const double x = finite(2, "x", "a number of metres");
+    const double y = finite(3, "y", "a number of metres");
+    const double heading = finite(4, "heading", "an angle in radians");
+    ds_.ring.sonars.push_back(SonarMount{Pose2D(x, y, heading)});
+    sonarLines_.push_back(lines_.lineNumber());
+  }
+
+  void finishHeader() {
+    for (std::size_t k = 0; k < kKeyCount; ++k) {
+      if (keyLine_[k] == 0) {
+        fail(kKeyNames[k], "expected one '" + std::string(kKeyNames[k]) +
+                               "' line before 'end_header', found none");
+      }
+    }
+    if (ds_.ring.sonars.empty())
+      fail("sonar", "expected at least one 'sonar' line before 'end_header', found none");
+    // Typical logs carry one reading per sonar per scan; the cap keeps a huge ring with sparse
+    // scans from reserving memory it never uses.
+    readingsPerScan_ = std::min<std::size_t>(ds_.ring.sonars.size(), 64);
+  }
+
+  void readBody() {
+    double lastTime = -std::numeric_limits<double>::infinity();
+    const unsigned long sonarCount = ds_.ring.sonars.size();
+    const double maxRange = ds_.ring.maxRange;
+    while (nextLine()) {
+      if (fields_.count == 0) continue;
+      const std::string_view key = fields_[0];
+      if (key == kReading) {
+        if (ds_.scans.empty())
+          fail("", "expected a 'scan' line before the first reading, found 'r'");
+        expectCount(3, "sonar range time");
+        Reading r;
+        unsigned long sonar = 0;
+        if (!parseUnsigned(fields_[1], sonar) || sonar >= sonarCount) {
+          fail("sonar", "expected a sonar index 0.." + std::to_string(sonarCount - 1) + ", " +
+                            found(fields_[1]));
+        }
+        r.sonar = static_cast<std::uint16_t>(sonar);
+        if (fields_[2] == kNone) {
+          r.range = Reading::kNoEcho;
+        } else {
+          if (!parseFinite(fields_[2], r.range) || r.range < 0.0) {
+            fail("range", "expected a number of metres >= 0 or 'none', " + found(fields_[2]));
+          }
+          // The header says the transducer hears nothing at or beyond max_range.
+          if (r.range >= maxRange) r.range = Reading::kNoEcho;
+        }
+        r.time = finite(3, "time", "a time in seconds");
+        ds_.scans.back().readings.push_back(r);
+      } else if (key == kScan) {
+        if (fields_.count != 6 && fields_.count != 8) {
+          fail("scan",
+               "expected 5 fields after 'scan' (time x y theta none) or 7 (time x y theta "
+               "true_x true_y true_theta), found " +
+                   std::to_string(fields_.count - 1));
+        }
+        // Locals, not nested calls: argument order is unspecified and errors must be reported
+        // for the leftmost bad field.
+        const double time = finite(1, "time", "a time in seconds");
+        if (time < lastTime) {
+          fail("time", "expected a time >= " + number(lastTime) +
+                           " (the previous scan's; scans are in time order), " + found(fields_[1]));
+        }
+        const double x = finite(2, "x", "a number of metres");
+        const double y = finite(3, "y", "a number of metres");
+        const double theta = finite(4, "theta", "an angle in radians");
+        std::optional<Pose2D> truth;
+        if (fields_.count == 8) {
+          const double tx = finite(5, "true_x", "a number of metres");
+          const double ty = finite(6, "true_y", "a number of metres");
+          const double ttheta = finite(7, "true_theta", "an angle in radians");
+          truth.emplace(tx, ty, ttheta);
+        } else if (fields_[5] != kNone) {
+          fail("scan", "expected 'none' or a true pose (true_x true_y true_theta) after theta, " +
+                           found(fields_[5]) + " alone");
+        }
+        lastTime = time;
+        // Built in place: moving a Scan in trips a GCC 12 -Wmaybe-uninitialized false positive.
+        Scan& scan = ds_.scans.emplace_back();
+        scan.time = time;
+        scan.odometry = Pose2D(x, y, theta);
+        scan.truth = truth;
+        scan.readings.reserve(readingsPerScan_);
+      } else {
+        fail("", "expected a body record ('scan' or 'r'), " + found(key));
+      }
+    }
+  }
+
+  const std::string& file_;
+  LineReader lines_;
+  std::string_view line_;
+  Fields fields_;
+  Dataset ds_;
+  std::array<std::size_t, kKeyCount> keyLine_{};  // 0 = not seen yet
+  std::vector<std::size_t> sonarLines_;
+  std::size_t readingsPerScan_ = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Writing
+
+// Throws std::runtime_error (without a path; callers add it) when the reader would reject the file.
+void checkWritable(const Dataset& d) {
+  auto bad = [](const std::string& why) { throw std::runtime_error(why); };
+  const SonarRing& ring = d.ring;
+  if (!validRobotName(ring.robot)) {
+    bad("robot name '" + ring.robot + "' is not 1 to 64 characters from A-Z a-z 0-9 _ . -");
+  }
+  if (!validAperture(ring.apertureRad)) bad("aperture is not an angle > 0 and <= pi");
+  if (!std::isfinite(ring.minRange) || ring.minRange < 0.0) bad("min range is not a number >= 0");
+  if (!std::isfinite(ring.maxRange) || ring.maxRange <= ring.minRange) {
+    bad("max range is not a number > min range");
+  }
+  if (ring.sonars.empty()) bad("the ring has no sonars");
+  if (ring.sonars.size() > kMaxSonars) bad("the ring has more than 65536 sonars");
+  auto finitePose = [](const Pose2D& p) {
+    return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.heading);
+  };
+  for (std::size_t i = 0; i < ring.sonars.size(); ++i) {
+    if (!finitePose(ring.sonars[i].pose))
+      bad("sonar " + std::to_string(i) + " has a non-finite pose");
+  }
+  double lastTime = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < d.scans.size(); ++i) {
+    const Scan& s = d.scans[i];
+    const std::string where = "scan " + std::to_string(i);
+    if (!std::isfinite(s.time)) bad(where + " has a non-finite time");
+    if (s.time < lastTime) bad(where + " is earlier than the scan before it");
+    lastTime = s.time;
+    if (!finitePose(s.odometry)) bad(where + " has a non-finite odometry pose");
+    if (s.truth && !finitePose(*s.truth)) bad(where + " has a non-finite true pose");
+    for (std::size_t k = 0; k < s.readings.size(); ++k) {
+      const Reading& r = s.readings[k];
+      const std::string what = where + " reading " + std::to_string(k);
+      if (r.sonar >= ring.sonars.size())
+        bad(what + " names sonar " + std::to_string(r.sonar) + ", not in the ring");
+      if (std::isnan(r.range) || r.range < 0.0) bad(what + " has a range that is not >= 0");
+      if (!std::isfinite(r.time)) bad(what + " has a non-finite time");
+    }
+  }
+}
+
+// Where formatted text goes: an ostream or a C file (for errno on failure).
+class ByteSink {
+ public:
+  virtual ~ByteSink() = default;
+  virtual void write(const char* data, std::size_t n) = 0;  // throws std::runtime_error
+};
+
+class StreamSink : public ByteSink {
+ public:
+  explicit StreamSink(std::ostream& out) : out_(out) {}
+  void write(const char* data, std::size_t n) override {
+    out_.write(data, static_cast<std::streamsize>(n));
+    if (!out_) throw std::runtime_error("the output stream failed");
+  }
+
+ private:
+  std::ostream& out_;
+};
+
+class FileSink : public ByteSink {
+ public:
+  explicit FileSink(std::FILE* f) : f_(f) {}
+  void write(const char* data, std::size_t n) override {
+    if (std::fwrite(data, 1, n, f_) != n) throw std::runtime_error(osReason(errno));
+  }
+
+ private:
+  std::FILE* f_;
+};
+
+// Formats into a buffer and hands it to the sink in large blocks.
+class TextWriter {
+ public:
+  explicit TextWriter(ByteSink& sink) : sink_(sink) { buf_.reserve(kFlushBytes + 256); }
+
+  TextWriter& operator<<(std::string_view s) {
+    buf_ += s;
+    return *this;
+  }
+  TextWriter& operator<<(char c) {
+    buf_ += c;
+    return *this;
+  }
+  // Shortest text that reads back to the same double.
+  TextWriter& operator<<(double v) {
+    std::array<char, 32> tmp{};
+    const auto r = std::to_chars(tmp.data(), tmp.data() + tmp.size(), v);
+    buf_.append(tmp.data(), r.ptr);
+    return *this;
+  }
+  TextWriter& operator<<(std::size_t v) {
+    std::array<char, 24> tmp{};
+    const auto r = std::to_chars(tmp.data(), tmp.data() + tmp.size(), v);
+    buf_.append(tmp.data(), r.ptr);
+    return *this;
+  }
+  void endLine() {
+    buf_ += '\n';
+    if (buf_.size() >= kFlushBytes) flush();
+  }
+  void flush() {
+    if (!buf_.empty()) sink_.write(buf_.data(), buf_.size());
+    buf_.clear();
+  }
+
+ private:
+  static constexpr std::size_t kFlushBytes = 64 * 1024;
+  ByteSink& sink_;
+  std::string buf_;
+};
+
+// The name between quotes: valid UTF-8 stays readable, everything else is escaped so that any
+// byte string comes back unchanged.
+void writeQuoted(TextWriter& w, const std::string& s) {
+  w << '"';
+  const auto* p = reinterpret_cast<const unsigned char*>(s.data());
+  const std::size_t n = s.size();
+  std::size_t i = 0;
+  while (i < n) {
+    const unsigned char c = p[i];
+    if (c == '"' || c == '\\') {
+      w << '\\' << static_cast<char>(c);
+    } else if (c == '\n') {
+      w << "\\n";
+    } else if (c == '\r') {
+      w << "\\r";
+    } else if (c == '\t') {
+      w << "\\t";
+    } else if (c < 0x80 && !isControl(c)) {
+      w << static_cast<char>(c);
+    } else {
+      const std::size_t len = c < 0x80 ? 0 : utf8Sequence(p + i, n - i);
+      if (len == 0) {
+        w << "\\x" << hexDigit(c >> 4U) << hexDigit(c);
+      } else {
+        w << std::string_view(s.data() + i, len);
+        i += len;
+        continue;
+      }
+    }
+    ++i;
+  }
+  w << '"';
+}
+
+void writeText(const Dataset& d, ByteSink& sink) {
+  TextWriter w(sink);
+  w << kMagic << ' ' << static_cast<std::size_t>(kSglogVersion);
+  w.endLine();
+  w << "# SonarGrid log; units: metres, radians, seconds; see docs/formats.md";
+  w.endLine();
+  w << "name ";
+  writeQuoted(w, d.name);
+  w.endLine();
+  w << "robot " << d.ring.robot;
+  w.endLine();
+  w << "aperture " << d.ring.apertureRad;
+  w.endLine();
+  w << "min_range " << d.ring.minRange;
+  w.endLine();
+  w << "max_range " << d.ring.maxRange;
+  w.endLine();
+  for (std::size_t i = 0; i < d.ring.sonars.size(); ++i) {
+    const Pose2D& p = d.ring.sonars[i].pose;
+    w << "sonar " << i << ' ' << p.x() << ' ' << p.y() << ' ' << p.heading;
+    w.endLine();
+  }
+  w << kEndHeader;
+  w.endLine();
+  for (const Scan& s : d.scans) {
+    w << kScan << ' ' << s.time << ' ' << s.odometry.x() << ' ' << s.odometry.y() << ' '
+      << s.odometry.heading << ' ';
+    if (s.truth) {
+      w << s.truth->x() << ' ' << s.truth->y() << ' ' << s.truth->heading;
+    } else {
+      w << kNone;
+    }
+    w.endLine();
+    for (const Reading& r : s.readings) {
+      w << kReading << ' ' << static_cast<std::size_t>(r.sonar) << ' ';
+      if (r.echo()) {
+        w << r.range;
+      } else {
+        w << kNone;
+      }
+      w << ' ' << r.time;
+      w.endLine();
+    }
+  }
+  w.flush();
+}
+
+// A fresh name next to `path`, so that the final rename stays within one file system.
+std::string temporaryNameFor(const std::string& path) {
+  thread_local std::mt19937_64 random{std::random_device{}()};
+  std::string name = path + ".";
+  std::uint64_t bits = random();
+  for (int i = 0; i < 16; ++i, bits >>= 4U) name += hexDigit(static_cast<unsigned>(bits));
+  return name + ".tmp";
+}
+
+}  // namespace
+
+Dataset parseSglog(std::istream& in, const std::string& displayName) {
+  StreamSource source(in, displayName);
+  return Parser(source, displayName).run();
+}
+
+Dataset readSglog(const std::string& path) {
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) throw LogError(path, 0, "", "cannot open: " + osReason(errno));
+  struct Closer {
+    std::FILE* f;
+    ~Closer() { std::fclose(f); }
+  } closer{f};
+  FileSource source(f, path);
+  return Parser(source, path).run();
+}
+
+void writeSglog(const Dataset& dataset, std::ostream& out) {
+  try {
+    checkWritable(dataset);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string("cannot write the sglog: ") + e.what());
+  }
+  StreamSink sink(out);
+  try {
+    writeText(dataset, sink);
+    out.flush();
+    if (!out) throw std::runtime_error("the output stream failed");
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string("cannot write the sglog: ") + e.what());
+  }
+}
+
+void writeSglog(const Dataset& dataset, const std::string& path) {
+  auto fail = [&path](const std::string& why) -> void {
+    throw std::runtime_error("cannot write '" + path + "': " + why);
+  };
+  try {
+    checkWritable(dataset);
+  } catch (const std::runtime_error& e) {
+    fail(e.what());
+  }
+
+  std::string tmp;
+  std::FILE* f = nullptr;
+  // "x" (exclusive create) guards against another writer that drew the same temporary name.
+  for (int attempt = 0; attempt < 8 && f == nullptr; ++attempt) {
+    tmp = temporaryNameFor(path);
+    f = std::fopen(tmp.c_str(), "wbx");
+    if (f == nullptr && errno != EEXIST) break;
+  }
+  if (f == nullptr) fail("cannot create the temporary file '" + tmp + "': " + osReason(errno));
+
+  std::string problem;
+  try {
+    FileSink sink(f);
+    writeText(dataset, sink);
+    if (std::fflush(f) != 0) problem = osReason(errno);
+  } catch (const std::exception& e) {
+    // Anything, out-of-memory included, must still close and remove the temporary file.
+    problem = e.what();
+  }
+  if (std::fclose(f) != 0 && problem.empty()) problem = osReason(errno);
+  std::error_code ec;
+  if (problem.empty()) {
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) problem = "cannot rename '" + tmp + "' to it: " + ec.message();
+  }
+  if (!problem.empty()) {
+    std::filesystem::remove(tmp, ec);
+    fail(problem);
+  }
+}
+
+}  // namespace sg
