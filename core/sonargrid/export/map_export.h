@@ -2,7 +2,9 @@
 // Exports of a built map: a PNG coloured by the 16 levels (north up, one pixel per cell times
 // `scale`, optional legend) and a ROS map_server pair (`.yaml` + `.pgm`).
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "sonargrid/export/palette.h"
 #include "sonargrid/occupancy_map.h"
@@ -15,11 +17,27 @@ struct PngOptions {
   const LevelPalette* palette = nullptr;  // nullptr: defaultLevelPalette()
 };
 
-// Throws std::runtime_error naming the path when the file cannot be written.
+// The exact pixels writeMapPng puts in the PNG (legend included), so that tests and callers without
+// OpenCV can inspect the picture. Throws std::invalid_argument like writeMapPng.
+struct RgbImage {
+  int width = 0;
+  int height = 0;
+  std::vector<Rgb> pixels;  // row-major, row 0 at the top
+  const Rgb& at(int x, int y) const {
+    return pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                  static_cast<std::size_t>(x)];
+  }
+};
+RgbImage renderMapImage(const OccupancyMap& map, const PngOptions& options = {});
+
+// Throws std::runtime_error naming the path when the file cannot be written, and
+// std::invalid_argument for scale < 1, an empty grid, a level layer of the wrong size or a level
+// above 15.
 void writeMapPng(const OccupancyMap& map, const std::string& path, const PngOptions& options = {});
 
 // Writes BASENAME.yaml and BASENAME.pgm (map_server convention, negate 0: pixel = 255 (1 - p),
-// never-observed cells 205). Throws std::runtime_error naming the path on failure.
+// never-observed cells 205). Throws std::runtime_error naming the path on failure, and
+// std::invalid_argument for an empty grid, layers of the wrong size or a non-finite probability.
 void writeRosMap(const OccupancyMap& map, const std::string& basename);
 
 }  // namespace sg
