@@ -1,6 +1,243 @@
+// Inverse sensor models at chosen (δ, θ) points. Every expected value is worked by hand from the
+// formula the comment names (papers in shared/papers, readings in notes/models-and-metrics.md).
+
 #include <QtTest>
-class Tstmodels : public QObject {
+#include <cmath>
+
+#include "sonargrid/models/sensor_model.h"
+
+using namespace sg;
+
+namespace {
+constexpr double kNoEcho = std::numeric_limits<double>::infinity();
+constexpr double kTol = 1e-4;
+
+std::unique_ptr<SensorModel> model(const char* name, std::initializer_list<std::pair<const char*, double>> set = {}) {
+  auto m = makeSensorModel(name);
+  ParameterSet p(m->info().parameters);
+  for (const auto& [k, v] : set) p.set(k, v);
+  m->configure(p);
+  return m;
+}
+}  // namespace
+
+class TstModels : public QObject {
   Q_OBJECT
+
+ private slots:
+  void hpf_data();
+  void hpf();
+  void murphy_data();
+  void murphy();
+  void parameterized_data();
+  void parameterized();
+  void konolige_data();
+  void konolige();
+  void himmAxis();
+  void evidenceAndProbabilityAgree();
+  void declarationsAreComplete();
 };
-QTEST_GUILESS_MAIN(Tstmodels)
+
+// Columns: delta (m), theta (deg), range (m or inf), expected region, pE, pO, P(occ).
+static void addColumns() {
+  QTest::addColumn<double>("delta");
+  QTest::addColumn<double>("thetaDeg");
+  QTest::addColumn<double>("range");
+  QTest::addColumn<int>("region");
+  QTest::addColumn<double>("pE");
+  QTest::addColumn<double>("pO");
+  QTest::addColumn<double>("p");
+}
+
+static void check(const SensorModel& m, double maxRange = 5.0) {
+  QFETCH(double, delta);
+  QFETCH(double, thetaDeg);
+  QFETCH(double, range);
+  QFETCH(int, region);
+  QFETCH(double, pE);
+  QFETCH(double, pO);
+  QFETCH(double, p);
+  const ModelValue v = m.evaluate(delta, degToRad(thetaDeg), range, maxRange);
+  QCOMPARE(static_cast<int>(v.region), region);
+  if (v.region == BeamRegion::Outside) return;
+  QVERIFY2(std::abs(v.empty - pE) < kTol, qPrintable(QString("pE %1 vs %2").arg(v.empty).arg(pE)));
+  QVERIFY2(std::abs(v.occupied - pO) < kTol, qPrintable(QString("pO %1 vs %2").arg(v.occupied).arg(pO)));
+  QVERIFY2(std::abs(v.probability - p) < kTol, qPrintable(QString("P %1 vs %2").arg(v.probability).arg(p)));
+}
+
+constexpr int kOut = static_cast<int>(BeamRegion::Outside);
+constexpr int kOcc = static_cast<int>(BeamRegion::Occupied);
+constexpr int kEmp = static_cast<int>(BeamRegion::Empty);
+
+void TstModels::hpf_data() {
+  addColumns();
+  // ε = 0.1 m, ω = 25°, R_min = 0, reading R = 2 m. Paper 000 eqs 1–6; P = 0.5 + (pO − pE)/2
+  // (paper 001 §3.2).
+  QTest::newRow("peak") << 2.0 << 0.0 << 2.0 << kOcc << 0.0 << 1.0 << 1.0;
+  // Or = 1 − (0.05/0.1)² = 0.75
+  QTest::newRow("half eps") << 2.05 << 0.0 << 2.0 << kOcc << 0.0 << 0.75 << 0.875;
+  // Oa = 1 − (2·6.25/25)² = 0.75
+  QTest::newRow("quarter aperture") << 2.0 << 6.25 << 2.0 << kOcc << 0.0 << 0.75 << 0.875;
+  // Er = 1 − (0.95/1.9)² = 0.75
+  QTest::newRow("empty mid") << 0.95 << 0.0 << 2.0 << kEmp << 0.75 << 0.0 << 0.125;
+  // 0.75 · 0.75 = 0.5625; P = 0.5 − 0.28125
+  QTest::newRow("empty off axis") << 0.95 << 6.25 << 2.0 << kEmp << 0.5625 << 0.0 << 0.21875;
+  QTest::newRow("outside cone") << 1.0 << 13.0 << 2.0 << kOut << 0.0 << 0.0 << 0.5;
+  QTest::newRow("beyond R+eps") << 2.11 << 0.0 << 2.0 << kOut << 0.0 << 0.0 << 0.5;
+  // No echo: empty region to R_max = 5: Er = 1 − (2.5/5)² = 0.75
+  QTest::newRow("no echo") << 2.5 << 0.0 << kNoEcho << kEmp << 0.75 << 0.0 << 0.125;
+}
+
+void TstModels::hpf() { check(*model("hpf", {{"no_echo", 1.0}})); }
+
+void TstModels::murphy_data() {
+  addColumns();
+  // R = 10, β = 15°, tolerance 0.5, Max_occ = 0.98, reading s = 6 (paper 002 eqs 1–4).
+  // Region I, r = 6, α = 5°: ((10−6)/10 + (15−5)/15)/2 · 0.98 = 0.533333 · 0.98 = 0.522667 (issue 2).
+  QTest::newRow("issue example") << 6.0 << 5.0 << 6.0 << kOcc << 0.0 << 0.522667 << 0.522667;
+  // Region I edge, r = 6.4, α = 15°: (0.36 + 0)/2 · 0.98 = 0.1764 — below 0.5, the flaw paper 002 §3.2 shows.
+  QTest::newRow("region I corner") << 6.4 << 15.0 << 6.0 << kOcc << 0.0 << 0.1764 << 0.1764;
+  // Region II, r = 3, α = 0: P(s|Emp) = (0.7 + 1)/2 = 0.85, P(s|Occ) = 0.15.
+  QTest::newRow("region II axis") << 3.0 << 0.0 << 6.0 << kEmp << 0.85 << 0.0 << 0.15;
+  // Region II corner, r = 3, α = 15°: P(s|Emp) = 0.35, P(s|Occ) = 0.65 (paper 002 §3.2's red cells).
+  QTest::newRow("region II corner") << 3.0 << 15.0 << 6.0 << kEmp << 0.35 << 0.0 << 0.65;
+  // r = 0.1: P(s|Emp) = (0.99 + 1)/2 = 0.995 → P(s|Occ) 0.005 clamped to 1 − 0.98; pE clamped to 0.98.
+  QTest::newRow("clamped") << 0.1 << 0.0 << 6.0 << kEmp << 0.98 << 0.0 << 0.02;
+  QTest::newRow("region III") << 7.0 << 0.0 << 6.0 << kOut << 0.0 << 0.0 << 0.5;
+  QTest::newRow("outside cone") << 3.0 << 16.0 << 6.0 << kOut << 0.0 << 0.0 << 0.5;
+}
+
+void TstModels::murphy() {
+  check(*model("murphy", {{"max_range", 10.0}, {"beta", 15.0}, {"tolerance", 0.5}, {"max_occupied", 0.98}, {"no_echo", 1.0}}),
+        10.0);
+}
+
+void TstModels::parameterized_data() {
+  addColumns();
+  // P1 = 0.02, P2 = 0.15, P3 = 0.5 m, P4 = 0.98, P5 = 15°, reading s = 3 (paper 002 §4, eq 7).
+  // pE, pO = the distance of P from 0.5, doubled.
+  QTest::newRow("sensor") << 0.0 << 0.0 << 3.0 << kEmp << 0.96 << 0.0 << 0.02;
+  // Region II halfway to s − P3 = 2.5: 0.02 + (0.35 − 0.02)/2 = 0.185
+  QTest::newRow("region II mid") << 1.25 << 0.0 << 3.0 << kEmp << 0.63 << 0.0 << 0.185;
+  // Region I starts at 0.5 + P2 = 0.65
+  QTest::newRow("region I start") << 2.5 << 0.0 << 3.0 << kOcc << 0.0 << 0.3 << 0.65;
+  QTest::newRow("peak") << 3.0 << 0.0 << 3.0 << kOcc << 0.0 << 0.96 << 0.98;
+  // 0.98 − 0.33/2 = 0.815
+  QTest::newRow("tent down") << 3.25 << 0.0 << 3.0 << kOcc << 0.0 << 0.63 << 0.815;
+  // eq 7: (15 − 7.5)/15 · (0.98 − 0.5) + 0.5 = 0.74
+  QTest::newRow("off axis peak") << 3.0 << 7.5 << 3.0 << kOcc << 0.0 << 0.48 << 0.74;
+  // eq 7: 0.5 · (0.185 − 0.5) + 0.5 = 0.3425
+  QTest::newRow("off axis empty") << 1.25 << 7.5 << 3.0 << kEmp << 0.315 << 0.0 << 0.3425;
+  QTest::newRow("edge of focus") << 3.0 << 15.0 << 3.0 << kOcc << 0.0 << 0.0 << 0.5;
+  QTest::newRow("beyond s+P3") << 3.6 << 0.0 << 3.0 << kOut << 0.0 << 0.0 << 0.5;
+  // No echo: Region II from P1 to 0.35 over the 5 m maximum range: 0.02 + 0.33 · 2.5/5 = 0.185
+  QTest::newRow("no echo") << 2.5 << 0.0 << kNoEcho << kEmp << 0.63 << 0.0 << 0.185;
+}
+
+void TstModels::parameterized() {
+  check(*model("parameterized", {{"p1", 0.02}, {"p2", 0.15}, {"p3", 0.5}, {"p4", 0.98}, {"p5", 15.0}, {"no_echo", 1.0}}));
+}
+
+void TstModels::konolige_data() {
+  addColumns();
+  // Paper 001 §2.2 defaults: F = 0.05, a(r) = 0.6(1 − min(1, 0.4 r)), d(r) = 0.01 + 0.015 r,
+  // σθ = ω/2 = 12.5°. λ = g φ(z)/(d F) + 1 − g Φ(z), z = (D − r)/d, P = λ/(1 + λ) (model comment).
+  // Reading D = 1 m, cell at r = 1, θ = 0: g = 0.36, d = 0.025, φ(0) = 0.398942, Φ(0) = 0.5:
+  // λ = 0.143619/0.00125 + 0.82 = 115.715 → P = 0.991432.
+  QTest::newRow("at reading") << 1.0 << 0.0 << 1.0 << kOcc << 0.0 << 0.982864 << 0.991432;
+  // r = 0.5, θ = 0: g = 0.48, z = 28.6 so λ = 1 − g = 0.52 → P = 0.342105.
+  QTest::newRow("free axis") << 0.5 << 0.0 << 1.0 << kEmp << 0.315789 << 0.0 << 0.342105;
+  // θ = σ: g = 0.48 · e^−½ = 0.291135 → λ = 0.708865 → P = 0.414816.
+  QTest::newRow("free at sigma") << 0.5 << 12.5 << 1.0 << kEmp << 0.170368 << 0.0 << 0.414816;
+  // r = 1.02: a = 0.3552, d = 0.0253, z = −0.790514 → λ = 82.8824 → P = 0.988079.
+  QTest::newRow("past reading") << 1.02 << 0.0 << 1.0 << kOcc << 0.0 << 0.976158 << 0.988079;
+  // θ = 6°: g = 0.36 · exp(−(6/12.5)²/2) = 0.320624 → λ = 103.233 → P = 0.990406.
+  QTest::newRow("off axis") << 1.0 << 6.0 << 1.0 << kOcc << 0.0 << 0.980812 << 0.990406;
+  // No echo at r = 1: λ = 1 − 0.36 = 0.64 → P = 0.390244.
+  QTest::newRow("no echo") << 1.0 << 0.0 << kNoEcho << kEmp << 0.219512 << 0.0 << 0.390244;
+  // No echo at r = 2, θ = 10°: g = 0.12 · exp(−0.32) = 0.087138 → P = 0.477223.
+  QTest::newRow("no echo far") << 2.0 << 10.0 << kNoEcho << kEmp << 0.045554 << 0.0 << 0.477223;
+  // a(r) = 0 from r = 2.5 m: no information.
+  QTest::newRow("past detection") << 2.6 << 0.0 << kNoEcho << kOut << 0.0 << 0.0 << 0.5;
+  QTest::newRow("outside cone") << 1.0 << 13.0 << 1.0 << kOut << 0.0 << 0.0 << 0.5;
+}
+
+void TstModels::konolige() { check(*model("konolige", {{"no_echo", 1.0}})); }
+
+void TstModels::himmAxis() {
+  // Paper 000 §2.2: on a 10 × 3 grid of 0.1 m cells, a sensor at the centre of cell (0, 1) facing
+  // +x with a 0.52 m echo ends in cell (5, 1) (x = 0.57): cells 0..4 get I⁻, cell 5 gets I⁺.
+  auto m = model("himm");
+  GridSpec grid;
+  grid.cellSize = 0.1;
+  grid.width = 10;
+  grid.height = 3;
+  const auto tables = BeamTables::shared(grid.cellSize, 1.0);
+  Footprint fp;
+  Beam beam;
+  beam.sensor = Pose2D(0.05, 0.15, 0.0);
+  beam.range = 0.52;
+  beam.maxRange = 5.0;
+  m->footprint(beam, grid, *tables, fp);
+  QCOMPARE(fp.cells.size(), std::size_t{6});
+  for (std::size_t i = 0; i < 5; ++i) {
+    QCOMPARE(fp.cells[i].cell, static_cast<std::uint32_t>(10 + i));
+    QVERIFY(fp.cells[i].empty > fp.cells[i].occupied);
+  }
+  QCOMPARE(fp.cells[5].cell, std::uint32_t{15});
+  QVERIFY(fp.cells[5].occupied > fp.cells[5].empty);
+  // OctoMap's hit 0.7 and miss 0.4 are what the probabilistic rules read.
+  QVERIFY(std::abs(fp.cells[5].probability - 0.7) < 1e-6);
+  QVERIFY(std::abs(fp.cells[0].probability - 0.4) < 1e-6);
+
+  // A diagonal beam: from (0.05, 0.05) at 45° for 0.25 m ends at (0.227, 0.227), cell (2, 2); the
+  // traversal steps one axis at a time, so it passes 2·2 + 1 = 5 cells, each once.
+  fp.clear();
+  beam.sensor = Pose2D(0.05, 0.05, std::numbers::pi / 4);
+  beam.range = 0.25;
+  m->footprint(beam, grid, *tables, fp);
+  QCOMPARE(fp.cells.size(), std::size_t{5});
+  QCOMPARE(fp.cells.back().cell, std::uint32_t{2 * 10 + 2});
+
+  // No echo with no_echo = 0 (the default): nothing.
+  auto quiet = model("himm");
+  fp.clear();
+  beam.range = kNoEcho;
+  quiet->footprint(beam, grid, *tables, fp);
+  QVERIFY(fp.cells.empty());
+}
+
+void TstModels::evidenceAndProbabilityAgree() {
+  // For every model except Murphy (whose evidence is its own belief mass, see murphy.cpp), the
+  // probability and the evidence obey P = 0.5 + (pO − pE)/2 at every point of the cone.
+  for (const std::string name : {"hpf", "konolige", "parameterized"}) {
+    auto m = model(name.c_str(), {{"no_echo", 1.0}});
+    for (double d = 0.05; d < 3.5; d += 0.173) {
+      for (double t = -20.0; t <= 20.0; t += 2.5) {
+        for (const double range : {2.0, kNoEcho}) {
+          const ModelValue v = m->evaluate(d, degToRad(t), range, 5.0);
+          if (v.region == BeamRegion::Outside) continue;
+          QVERIFY(v.empty >= 0.0 && v.empty <= 1.0 && v.occupied >= 0.0 && v.occupied <= 1.0);
+          QVERIFY(std::abs(v.probability - (0.5 + 0.5 * (v.occupied - v.empty))) < 1e-9);
+        }
+      }
+    }
+  }
+}
+
+void TstModels::declarationsAreComplete() {
+  // The card's sliders exist under their names, and every declaration is usable as-is.
+  QCOMPARE(sensorModelNames().size(), std::size_t{5});
+  for (const char* p : {"p1", "p2", "p3", "p4", "p5"}) QVERIFY(ParameterSet(sensorModelInfo("parameterized").parameters).has(p));
+  QVERIFY(ParameterSet(sensorModelInfo("hpf").parameters).has("epsilon"));
+  QVERIFY(ParameterSet(sensorModelInfo("hpf").parameters).has("omega"));
+  for (const std::string& name : sensorModelNames()) {
+    for (const ParameterSpec& s : sensorModelInfo(name).parameters) {
+      QVERIFY2(s.min <= s.defaultValue && s.defaultValue <= s.max, qPrintable(QString::fromStdString(name + "." + s.name)));
+      QVERIFY(!s.source.empty() && !s.symbol.empty());
+    }
+  }
+}
+
+QTEST_GUILESS_MAIN(TstModels)
 #include "tst_models.moc"

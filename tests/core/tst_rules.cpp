@@ -1,6 +1,189 @@
+// Update rules over short hand-worked sequences. Each step's number is computed by hand from the
+// formula the comment names.
+
 #include <QtTest>
-class Tstrules : public QObject {
+#include <cmath>
+
+#include "sonargrid/rules/update_rule.h"
+
+using namespace sg;
+
+namespace {
+constexpr double kTol = 1e-6;
+
+std::unique_ptr<UpdateRule> rule(const char* name, std::initializer_list<std::pair<const char*, double>> set = {},
+                                 std::size_t cells = 3) {
+  auto r = makeUpdateRule(name);
+  ParameterSet p(r->info().parameters);
+  for (const auto& [k, v] : set) p.set(k, v);
+  r->configure(p);
+  r->reset(cells);
+  return r;
+}
+
+// One reading's footprint: (cell, pE, pO, P).
+Footprint fp(std::initializer_list<CellEvidence> cells) { return Footprint{std::vector<CellEvidence>(cells)}; }
+CellEvidence empty(std::uint32_t cell, double pE) { return {cell, pE, 0.0, 0.5 - pE / 2}; }
+CellEvidence occupied(std::uint32_t cell, double pO) { return {cell, 0.0, pO, 0.5 + pO / 2}; }
+CellEvidence likelihood(std::uint32_t cell, double p) {
+  return {cell, p < 0.5 ? 1 - 2 * p : 0.0, p > 0.5 ? 2 * p - 1 : 0.0, p};
+}
+
+#define NEAR(a, b) QVERIFY2(std::abs((a) - (b)) < kTol, qPrintable(QString("%1 vs %2").arg(a, 0, 'g', 10).arg(b, 0, 'g', 10)))
+}  // namespace
+
+class TstRules : public QObject {
   Q_OBJECT
+
+ private slots:
+  void addition();
+  void additionPaper001Combine();
+  void bayesPaper001();
+  void bayesRecursive();
+  void logUpdate();
+  void logOdds();
+  void himmClamping();
+  void dempsterShafer();
+  void unseenCellsAreUnknown();
 };
-QTEST_GUILESS_MAIN(Tstrules)
+
+void TstRules::addition() {
+  // Paper 001 §3.1 with paper 000's combine (eqs 7–8), normalisation on.
+  auto r = rule("addition");
+  // Reading 1: cell 0 pE = 0.5 → Emp0 = 0 + 0.5 − 0 = 0.5.
+  r->apply(fp({empty(0, 0.5)}));
+  // Reading 2: occupied arc over cells 1 and 2 with pO 0.6 and 0.2 → normalised 0.75 and 0.25.
+  r->apply(fp({occupied(1, 0.6), occupied(2, 0.2)}));
+  // Reading 3: cell 1 pE = 0.5 → Emp1 = 0.5; cell 0 pE = 0.5 again → Emp0 = 0.5 + 0.5 − 0.25 = 0.75.
+  r->apply(fp({empty(0, 0.5), empty(1, 0.5)}));
+  NEAR(r->native(0), -0.75);  // Occ 0 < Emp 0.75 → −Emp
+  NEAR(r->occupancy(0), 0.125);
+  NEAR(r->native(1), 0.75);  // Occ 0.75 ≥ Emp 0.5 → Occ
+  NEAR(r->occupancy(1), 0.875);
+  NEAR(r->native(2), 0.25);
+  QVERIFY(!r->filled(0) && r->filled(1) && r->filled(2));
+  QCOMPARE(int(r->level(1)), 13);  // round(15 · 0.875) = round(13.125)
+
+  // Without normalisation cell 1 takes 0.6 straight.
+  auto raw = rule("addition", {{"normalise", 0}});
+  raw->apply(fp({occupied(1, 0.6), occupied(2, 0.2)}));
+  NEAR(raw->native(1), 0.6);
+}
+
+void TstRules::additionPaper001Combine() {
+  // Paper 001 §3.1: Map = 1 − Emp if Emp > Occ, Occ if Occ > Emp; a tie (nothing known) is 0.5.
+  auto r = rule("addition", {{"combine", 1}});
+  r->apply(fp({empty(0, 0.5), occupied(1, 0.4)}));  // a lone pO normalises to 1
+  r->apply(fp({empty(0, 0.5)}));
+  NEAR(r->occupancy(0), 0.25);  // Emp = 0.75 → 1 − 0.75
+  NEAR(r->occupancy(1), 1.0);
+  NEAR(r->occupancy(2), 0.5);
+}
+
+void TstRules::bayesPaper001() {
+  // Paper 001 §3.2: pE ↦ (1 − pE)/2, pO ↦ 0.5 + pO/2, Map ← P·Map / (P·Map + (1 − P)(1 − Map)).
+  auto r = rule("bayes");
+  r->apply(fp({empty(0, 0.6)}));  // P = 0.2: 0.1 / (0.1 + 0.4) = 0.2
+  NEAR(r->occupancy(0), 0.2);
+  r->apply(fp({occupied(0, 0.8)}));  // P = 0.9: 0.18 / (0.18 + 0.08) = 0.692308
+  NEAR(r->occupancy(0), 0.18 / 0.26);
+  QVERIFY(r->filled(0));
+  NEAR(r->occupancy(1), 0.5);
+}
+
+void TstRules::bayesRecursive() {
+  // Paper 002 eqs 5–6 (standard recursive form), fed P(s|Occ) directly.
+  auto r = rule("bayes-recursive");
+  r->apply(fp({likelihood(0, 0.7)}));  // 0.35 / (0.35 + 0.15) = 0.7
+  NEAR(r->occupancy(0), 0.7);
+  r->apply(fp({likelihood(0, 0.7)}));  // 0.49 / (0.49 + 0.09) = 0.844828
+  NEAR(r->occupancy(0), 0.49 / 0.58);
+  r->apply(fp({likelihood(0, 0.3)}));  // back to 0.7: 0.253448 / (0.253448 + 0.108621)
+  NEAR(r->occupancy(0), 0.7);
+  // Certain evidence against a certain cell: Bayes is undefined, the cell keeps its value.
+  auto c = rule("bayes-recursive");
+  c->apply(fp({likelihood(1, 1.0)}));
+  c->apply(fp({likelihood(1, 0.0)}));
+  NEAR(c->occupancy(1), 1.0);
+}
+
+void TstRules::logUpdate() {
+  // Paper 001 §3.3 as notes fix it: Map = log10(Emp) + log10(Occ), cut to [−2, 2].
+  auto r = rule("log");
+  r->apply(fp({empty(0, 0.5)}));     // log10 0.5 = −0.301030
+  r->apply(fp({occupied(0, 0.8)}));  // log10 1.8 = 0.255273
+  NEAR(r->native(0), std::log10(0.5) + std::log10(1.8));  // −0.045757
+  NEAR(r->occupancy(0), 0.5 - 0.5 * 0.0457575 / 2.0);     // 0.488561
+  QVERIFY(!r->filled(0));
+  // Ten certain echoes: 10 log10 2 = 3.0103, cut to 2 → p = 1.
+  for (int i = 0; i < 10; ++i) r->apply(fp({occupied(1, 1.0)}));
+  NEAR(r->native(1), 2.0);
+  NEAR(r->occupancy(1), 1.0);
+  // pE = 1 drives Emp to 0 (−∞ in logs): certainly free, and it stays so.
+  r->apply(fp({empty(2, 1.0)}));
+  r->apply(fp({occupied(2, 1.0)}));
+  NEAR(r->native(2), -2.0);
+  NEAR(r->occupancy(2), 0.0);
+}
+
+void TstRules::logOdds() {
+  // L ← clamp(L + logit p − logit 0.5, logit 0.12, logit 0.97).
+  auto r = rule("logodds");
+  r->apply(fp({likelihood(0, 0.7)}));  // logit 0.7 = 0.847298
+  NEAR(r->native(0), std::log(0.7 / 0.3));
+  for (int i = 0; i < 4; ++i) r->apply(fp({likelihood(0, 0.7)}));  // 5 · 0.847298 = 4.236 > 3.476099
+  NEAR(r->native(0), std::log(0.97 / 0.03));
+  NEAR(r->occupancy(0), 0.97);
+  r->apply(fp({likelihood(0, 0.4)}));  // 3.476099 − 0.405465 = 3.070634 → p = 0.955696
+  NEAR(r->native(0), std::log(0.97 / 0.03) + std::log(0.4 / 0.6));
+  NEAR(r->occupancy(0), 1.0 / (1.0 + std::exp(-3.0706342)));
+  for (int i = 0; i < 20; ++i) r->apply(fp({likelihood(1, 0.4)}));  // clamps at 0.12
+  NEAR(r->occupancy(1), 0.12);
+}
+
+void TstRules::himmClamping() {
+  // Paper 000 §2.2: I⁺ = 3, I⁻ = 1, CV in [0, 15].
+  auto r = rule("himm");
+  for (int i = 0; i < 4; ++i) r->apply(fp({occupied(0, 1.0)}));
+  QCOMPARE(r->native(0), 12.0);
+  r->apply(fp({occupied(0, 1.0)}));
+  QCOMPARE(r->native(0), 15.0);
+  r->apply(fp({occupied(0, 1.0)}));  // 18 clamps to 15
+  QCOMPARE(r->native(0), 15.0);
+  r->apply(fp({empty(0, 1.0)}));
+  QCOMPARE(r->native(0), 14.0);
+  QCOMPARE(int(r->level(0)), 14);
+  NEAR(r->occupancy(0), 14.0 / 15.0);
+  r->apply(fp({empty(1, 1.0)}));  // −1 from 0 clamps at 0
+  QCOMPARE(r->native(1), 0.0);
+  QVERIFY(r->filled(0) && !r->filled(1));
+}
+
+void TstRules::dempsterShafer() {
+  // Dempster's rule (dempster_shafer.cpp). Start: m = (occ 0, emp 0, unk 1).
+  auto r = rule("dempster-shafer");
+  r->apply(fp({occupied(0, 0.6)}));  // m = (0.6, 0, 0.4)
+  NEAR(r->native(0), 0.6);
+  // Evidence (0, 0.5, 0.5): K = 0.6·0.5 = 0.3; m(occ) = 0.3/0.7, m(emp) = 0.2/0.7, m(unk) = 0.2/0.7.
+  r->apply(fp({empty(0, 0.5)}));
+  NEAR(r->native(0), 0.1 / 0.7);
+  NEAR(r->occupancy(0), 0.3 / 0.7 + 0.1 / 0.7);  // pignistic 0.571429
+  QVERIFY(r->filled(0));
+  // Total conflict leaves the cell as it was.
+  r->apply(fp({occupied(1, 1.0)}));
+  r->apply(fp({empty(1, 1.0)}));
+  NEAR(r->occupancy(1), 1.0);
+}
+
+void TstRules::unseenCellsAreUnknown() {
+  for (const std::string& name : updateRuleNames()) {
+    auto r = makeUpdateRule(name);
+    r->reset(4);
+    QVERIFY(!r->filled(3));
+    // HIMM has no "unknown": CV 0 is both unseen and free (paper 000 §2.2).
+    if (name != "himm") NEAR(r->occupancy(3), 0.5);
+  }
+}
+
+QTEST_GUILESS_MAIN(TstRules)
 #include "tst_rules.moc"

@@ -1,10 +1,14 @@
 #pragma once
 // Visits the cells whose centres lie in a sonar cone, using BeamTables for distance and bearing.
 // Shared by every cone-shaped model; `Fn` is inlined per model, so the per-cell cost is a table
-// load, two compares and the model's own arithmetic.
+// load, two compares and the model's own arithmetic. Each row is walked only over the span where
+// the horizontal line through its cell centres meets the cone (disk ∩ wedge), so few cells are
+// looked at and rejected.
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numbers>
 
 #include "sonargrid/beam_tables.h"
@@ -13,9 +17,20 @@
 
 namespace sg {
 
+namespace detail {
+
+// Narrows [lo, hi] to the x with a * x <= b.
+inline void clip(double a, double b, double& lo, double& hi) {
+  if (a > 0.0) hi = std::min(hi, b / a);
+  else if (a < 0.0) lo = std::max(lo, b / a);
+  else if (b < 0.0) hi = -std::numeric_limits<double>::infinity();
+}
+
+}  // namespace detail
+
 // fn(std::uint32_t cell, double delta, double theta) for every cell whose centre is within
-// `reach` metres of the sensor and within `halfAngle` radians of its axis. Cells are visited row by
-// row from the lowest world y, each row from the lowest x: a fixed order.
+// `reach` metres of the sensor and within `halfAngle` radians of its axis (halfAngle < 90°).
+// Cells are visited row by row from the lowest world y, each row from the lowest x: a fixed order.
 template <class Fn>
 void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const GridSpec& grid,
                      const BeamTables& tables, Fn&& fn) {
@@ -29,33 +44,40 @@ void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const
   const int qy = std::min(q - 1, static_cast<int>((v - fv) * q));
   const int iu = static_cast<int>(fu);
   const int iv = static_cast<int>(fv);
+  // The apex the tables assume: the centre of the sensor's sub-cell, in cell units of its cell.
+  const double ax = (qx + 0.5) / q;
+  const double ay = (qy + 0.5) / q;
 
-  // Bounding box of the sector: the apex, both edge ends and every axis direction inside it.
   const double h = sensor.heading;
-  double minX = 0.0, maxX = 0.0, minY = 0.0, maxY = 0.0;
-  auto include = [&](double a) {
-    const double x = reach * std::cos(a), y = reach * std::sin(a);
-    minX = std::min(minX, x), maxX = std::max(maxX, x);
-    minY = std::min(minY, y), maxY = std::max(maxY, y);
-  };
-  include(h - halfAngle);
-  include(h + halfAngle);
-  for (int k = -4; k <= 4; ++k) {
-    const double a = k * std::numbers::pi / 2.0;
-    if (std::abs(wrapAngle(a - h)) <= halfAngle) include(a);
-  }
-  const int r = tables.radius();
-  const int dx0 = std::max({-r, static_cast<int>(std::floor(u + minX / c)) - 1 - iu, -iu});
-  const int dx1 = std::min({r, static_cast<int>(std::floor(u + maxX / c)) + 1 - iu, grid.width - 1 - iu});
-  const int dy0 = std::max({-r, static_cast<int>(std::floor(v + minY / c)) - 1 - iv, -iv});
-  const int dy1 = std::min({r, static_cast<int>(std::floor(v + maxY / c)) + 1 - iv, grid.height - 1 - iv});
-  if (dx0 > dx1 || dy0 > dy1) return;
+  const double R = reach / c;
+  const double d1x = std::cos(h - halfAngle), d1y = std::sin(h - halfAngle);  // right edge
+  const double d2x = std::cos(h + halfAngle), d2y = std::sin(h + halfAngle);  // left edge
+  // Spans are computed for the region grown by kSlack cells (perpendicular distance), far more than
+  // the float tables' error, so they hold every cell the per-cell test below accepts.
+  constexpr double kSlack = 1e-3;
 
+  const int r = tables.radius();
+  const int dy0 = std::max({-r, static_cast<int>(std::floor(ay - 0.5 - R)) - 1, -iv});
+  const int dy1 = std::min({r, static_cast<int>(std::ceil(ay - 0.5 + R)) + 1, grid.height - 1 - iv});
   const BeamTables::Entry* t = tables.table(qx, qy);
   const int side = tables.side();
   const float reachF = static_cast<float>(reach);
   constexpr double kPi = std::numbers::pi;
   for (int dy = dy0; dy <= dy1; ++dy) {
+    const double y = dy + 0.5 - ay;  // row of cell centres, relative to the apex
+    const double disk = (R + kSlack) * (R + kSlack) - y * y;
+    if (disk < 0.0) continue;
+    const double half = std::sqrt(disk);  // once per row, not per cell
+    double lo = -half, hi = half;
+    // The wedge: left of the right edge, cross(d1, p) >= -slack, and right of the left edge,
+    // cross(p, d2) >= -slack (a wedge narrower than 180° is the meet of the two half-planes).
+    detail::clip(d1y, d1x * y + kSlack, lo, hi);
+    detail::clip(-d2y, -d2x * y + kSlack, lo, hi);
+    if (!(lo <= hi)) continue;
+    // Cell dx has its centre at x = dx + 0.5 - ax.
+    const int dx0 = std::max({-r, static_cast<int>(std::ceil(lo - 0.5 + ax)), -iu});
+    const int dx1 = std::min({r, static_cast<int>(std::floor(hi - 0.5 + ax)), grid.width - 1 - iu});
+    if (dx0 > dx1) continue;
     const BeamTables::Entry* row = t + (dy + r) * side + r;
     const std::uint32_t rowBase = static_cast<std::uint32_t>((iv + dy) * grid.width + iu);
     for (int dx = dx0; dx <= dx1; ++dx) {

@@ -1,1 +1,145 @@
-// placeholder: replaced by its owner
+// Konolige's multiple-target model (paper 001 §2.2, after Konolige 1997), in the reading fixed by
+// notes/models-and-metrics.md: the printed ratio of densities becomes the likelihood ratio
+//   λ = p(D | cell occupied) / p(D | cell empty)
+// of the first return D. An occupied cell at range r and angle θ echoes with probability
+// g = a(r)·exp(-θ²/2σ²) (σ = ω/2, the printed lobe width), at a range spread N(r, d(r)²); false
+// returns arrive at F per metre. With the other cells' contributions shared by both hypotheses:
+//   p(D | occ) = g·N(D; r, d) + F·(1 − g·Φ((D − r)/d)),   p(D | emp) = F,
+//   λ = g·φ(z)/(d·F) + 1 − g·Φ(z),  z = (D − r)/d.
+// Cells well short of D get λ = 1 − g (free evidence, at most a0 strong: the gentle updates of
+// paper 001 §6), cells at D get a strong occupied ratio that F keeps finite, cells beyond get
+// λ → 1 (nothing). A no-echo reading gives λ = 1 − g over the whole cone: the occupied cell would
+// have been heard with probability g.
+
+#include <cmath>
+#include <numbers>
+
+#include "sonargrid/models/cone_model.h"
+#include "sonargrid/models/model_classes.h"
+
+namespace sg {
+namespace {
+
+constexpr double kZMax = 8.0;      // |z| beyond which φ and Φ are 0/1 to double precision in effect
+constexpr double kZShadow = -5.0;  // cells this many deviations past D are left alone (λ = 1 − 3e-7)
+
+const SampledFunction& normalPdf() {
+  static const SampledFunction f(-kZMax, kZMax, 4096, [](double z) {
+    return std::exp(-0.5 * z * z) / std::sqrt(2.0 * std::numbers::pi);
+  });
+  return f;
+}
+const SampledFunction& normalCdf() {
+  static const SampledFunction f(-kZMax, kZMax, 4096,
+                                 [](double z) { return 0.5 * std::erfc(-z / std::numbers::sqrt2); });
+  return f;
+}
+
+struct KonoligeBeam {
+  bool active = false;
+  double reach = 0.0;
+  double halfAngle = 0.0;
+  bool echo = true;
+  double range = 0.0;
+  const KonoligeModel::Settings* s = nullptr;
+  const SampledFunction* lobe = nullptr;
+  const SampledFunction* pdf = nullptr;
+  const SampledFunction* cdf = nullptr;
+  double invF = 0.0;
+
+  ModelValue at(double r, double theta) const {
+    const double t = std::abs(theta);
+    if (t > halfAngle || r > reach) return {};
+    const double a = s->attenuation * (1.0 - std::min(1.0, s->attenuationSlope * r));
+    if (a <= 0.0) return {};  // past the detection range the reading says nothing
+    const double g = a * (*lobe)(t);
+    double lambda;
+    if (echo) {
+      const double d = s->sd0 + s->sd1 * r;
+      const double z = (range - r) / d;
+      if (z < kZShadow) return {};
+      lambda = g * (*pdf)(z) * invF / d + 1.0 - g * (*cdf)(z);
+    } else {
+      lambda = 1.0 - g;
+    }
+    return fromProbability(lambda / (1.0 + lambda));
+  }
+};
+
+}  // namespace
+
+KonoligeModel::KonoligeModel() { configure(ParameterSet(staticInfo().parameters)); }
+
+const ModelInfo& KonoligeModel::staticInfo() {
+  static const ModelInfo info{
+      "konolige",
+      "Konolige multiple-target model",
+      "paper 001 §2.2 (after Konolige 1997); likelihood-ratio reading of notes/models-and-metrics.md",
+      {
+          {"omega", "ω", "deg", 5.0, 90.0, 25.0, "paper 001 §2.2 (lobe width follows the aperture)",
+           "Full cone angle; the angular lobe is a Gaussian of σ = ω/2, cut at ±ω/2."},
+          {"false_rate", "F", "1/m", 0.001, 1.0, 0.05, "paper 001 §2.2 (F = 0.05)",
+           "Density of false returns; keeps the occupied likelihood ratio finite."},
+          {"attenuation", "a₀", "", 0.0, 1.0, 0.6, "paper 001 §2.2: a(r) = 0.6 (1 − min(1, 0.4 r))",
+           "Detection probability of an occupied cell at the transducer."},
+          {"attenuation_slope", "k", "1/m", 0.0, 5.0, 0.4, "paper 001 §2.2: a(r) = 0.6 (1 − min(1, 0.4 r))",
+           "a(r) falls to 0 at r = 1/k (2.5 m in the paper)."},
+          {"range_sd0", "d₀", "m", 0.001, 0.5, 0.01, "paper 001 §2.2: d(r) = 0.01 + 0.015 r",
+           "Fixed part of the range deviation (a standard deviation)."},
+          {"range_sd1", "d₁", "", 0.0, 0.5, 0.015, "paper 001 §2.2: d(r) = 0.01 + 0.015 r",
+           "Range-proportional part of the range deviation."},
+          noEchoParameter("λ = 1 − g(r, θ) over the cone up to the detection range"),
+      }};
+  return info;
+}
+
+void KonoligeModel::configure(const ParameterSet& p) {
+  s_.omega = degToRad(p.get("omega"));
+  s_.falseRate = p.get("false_rate");
+  s_.attenuation = p.get("attenuation");
+  s_.attenuationSlope = p.get("attenuation_slope");
+  s_.sd0 = p.get("range_sd0");
+  s_.sd1 = p.get("range_sd1");
+  s_.noEchoFree = p.get("no_echo") != 0.0;
+  const double sigma = s_.omega / 2.0;
+  lobe_ = SampledFunction(0.0, s_.omega / 2.0, 1024, [sigma](double t) { return std::exp(-t * t / (2.0 * sigma * sigma)); });
+}
+
+namespace {
+KonoligeBeam prepareKonolige(const KonoligeModel::Settings& s, const SampledFunction& lobe, double range,
+                             double maxRange) {
+  KonoligeBeam b;
+  b.echo = std::isfinite(range);
+  if (!b.echo && !s.noEchoFree) return b;
+  b.active = true;
+  b.s = &s;
+  b.lobe = &lobe;
+  b.pdf = &normalPdf();
+  b.cdf = &normalCdf();
+  b.invF = 1.0 / s.falseRate;
+  b.halfAngle = s.omega / 2.0;
+  b.range = b.echo ? range : maxRange;
+  // Beyond D + 5 d(D) (or the maximum range without an echo) and beyond the detection range 1/k
+  // the ratio is 1: no cell there needs visiting.
+  double reach = b.echo ? range - kZShadow * (s.sd0 + s.sd1 * range) : maxRange;
+  if (s.attenuationSlope > 0.0) reach = std::min(reach, 1.0 / s.attenuationSlope);
+  b.reach = reach;
+  return b;
+}
+}  // namespace
+
+ModelValue KonoligeModel::evaluate(double delta, double theta, double range, double maxRange) const {
+  return prepareKonolige(s_, lobe_, range, maxRange).at(delta, theta);
+}
+
+double KonoligeModel::reach(double maxRange) const {
+  double r = maxRange - kZShadow * (s_.sd0 + s_.sd1 * maxRange);
+  if (s_.attenuationSlope > 0.0) r = std::min(r, 1.0 / s_.attenuationSlope);
+  return r;
+}
+
+void KonoligeModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables, Footprint& out) const {
+  coneFootprint(prepareKonolige(s_, lobe_, beam.range, beam.maxRange), beam, grid, tables, out);
+}
+
+}  // namespace sg

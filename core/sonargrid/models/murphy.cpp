@@ -1,1 +1,100 @@
-// placeholder: replaced by its owner
+// Murphy's standard sonar model (paper 002 §3.1, eqs 1–4, after Murphy 2000). For a cell at range r
+// and angle α inside the cone (|α| ≤ β):
+//   v = ((R − r)/R + (β − α)/β) / 2
+//   Region I  (|r − s| ≤ tolerance):  P(s|Occ) = v · Max_occ           (eq 1)
+//   Region II (r < s − tolerance):    P(s|Emp) = v, P(s|Occ) = 1 − v   (eqs 3–4)
+//   Region III (beyond):              no update.
+// P(s|Occ) is clamped to [1 − Max_occ, Max_occ] so no cell becomes absorbing (notes). Kept as
+// printed, including what paper 002 §3.2 criticises: Region I values below 0.5 at the cone's
+// corners and Region II values above 0.5 near r = R, α = β.
+// As evidence (for addition, log and Dempster–Shafer) the model gives Murphy's own belief masses:
+// m(occ) = P(s|Occ) in Region I, m(emp) = P(s|Emp) in Region II.
+
+#include <algorithm>
+#include <cmath>
+
+#include "sonargrid/models/cone_model.h"
+#include "sonargrid/models/model_classes.h"
+
+namespace sg {
+namespace {
+
+struct MurphyBeam {
+  bool active = false;
+  double reach = 0.0;
+  double halfAngle = 0.0;  // β
+  bool echo = true;
+  double s = 0.0, R = 5.0, tolerance = 0.1, maxOcc = 0.98;
+
+  ModelValue at(double r, double alpha) const {
+    const double a = std::abs(alpha);
+    if (a > halfAngle || r > reach) return {};
+    const double v = std::clamp(((R - r) / R + (halfAngle - a) / halfAngle) / 2.0, 0.0, 1.0);
+    if (echo && std::abs(r - s) <= tolerance) {
+      const double pOcc = std::clamp(v * maxOcc, 1.0 - maxOcc, maxOcc);
+      return ModelValue{BeamRegion::Occupied, 0.0, pOcc, pOcc};
+    }
+    if (!echo || r < s - tolerance) {
+      const double pEmp = std::min(v, maxOcc);
+      return ModelValue{BeamRegion::Empty, pEmp, 0.0, std::clamp(1.0 - v, 1.0 - maxOcc, maxOcc)};
+    }
+    return {};
+  }
+};
+
+MurphyBeam prepareMurphy(double range, double maxRange, double R, double beta, double tolerance, double maxOcc,
+                         bool noEchoFree) {
+  MurphyBeam b;
+  b.echo = std::isfinite(range);
+  if (!b.echo && !noEchoFree) return b;
+  b.active = true;
+  b.halfAngle = beta;
+  b.R = R;
+  b.tolerance = tolerance;
+  b.maxOcc = maxOcc;
+  b.s = b.echo ? range : maxRange;
+  b.reach = b.echo ? range + tolerance : std::min(maxRange, R);
+  return b;
+}
+
+}  // namespace
+
+const ModelInfo& MurphyModel::staticInfo() {
+  static const ModelInfo info{
+      "murphy",
+      "Murphy standard sonar model",
+      "paper 002 §3.1 eqs 1–4 (after Murphy 2000)",
+      {
+          {"max_range", "R", "m", 0.5, 20.0, 5.0, "paper 002 eqs 1, 4 (R: maximum sensing range)",
+           "The R of (R − r)/R."},
+          {"beta", "β", "deg", 1.0, 45.0, 15.0, "paper 002 eqs 1, 4 (β: half the cone width)",
+           "Half-width of the cone."},
+          {"tolerance", "tol", "m", 0.005, 2.0, 0.10, "paper 002 §3.1 (thickness of Region I)",
+           "Half-width of Region I around the reading."},
+          {"max_occupied", "Max_occ", "", 0.5, 1.0, 0.98, "paper 002 eq 1 (Max_occupied = 0.98)",
+           "Ceiling of P(s|Occ); also the clamp that keeps cells from becoming absorbing."},
+          noEchoParameter("Region II (free) over the cone up to min(R, maximum range)"),
+      }};
+  return info;
+}
+
+void MurphyModel::configure(const ParameterSet& p) {
+  maxRange_ = p.get("max_range");
+  beta_ = degToRad(p.get("beta"));
+  tolerance_ = p.get("tolerance");
+  maxOccupied_ = p.get("max_occupied");
+  noEchoFree_ = p.get("no_echo") != 0.0;
+}
+
+ModelValue MurphyModel::evaluate(double delta, double theta, double range, double maxRange) const {
+  return prepareMurphy(range, maxRange, maxRange_, beta_, tolerance_, maxOccupied_, noEchoFree_).at(delta, theta);
+}
+
+double MurphyModel::reach(double maxRange) const { return std::max(maxRange, maxRange_) + tolerance_; }
+
+void MurphyModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables, Footprint& out) const {
+  coneFootprint(prepareMurphy(beam.range, beam.maxRange, maxRange_, beta_, tolerance_, maxOccupied_, noEchoFree_),
+                beam, grid, tables, out);
+}
+
+}  // namespace sg

@@ -1,1 +1,40 @@
-// placeholder: replaced by its owner
+#include "sonargrid/rules/rule_classes.h"
+
+namespace sg {
+namespace {
+ParameterSpec priorSpec(const std::string& source) {
+  return {"prior", "P(H)", "", 0.01, 0.99, 0.5, source, "Occupancy of a cell nobody has seen."};
+}
+}  // namespace
+
+const RuleInfo& BayesRule::evidenceInfo() {
+  static const RuleInfo info{"bayes", "Bayesian update (paper 001)", "paper 001 §3.2", "p(occupied)",
+                             {priorSpec("paper 001 §3.2 (0.5: no information)")}};
+  return info;
+}
+
+const RuleInfo& BayesRule::likelihoodInfo() {
+  static const RuleInfo info{"bayes-recursive", "Recursive Bayes (paper 002)",
+                             "paper 002 eqs 5–6 (standard recursive form; notes/models-and-metrics.md)",
+                             "p(occupied)", {priorSpec("paper 002 eq 5 (P(H))")}};
+  return info;
+}
+
+void BayesRule::configure(const ParameterSet& p) { prior_ = p.get("prior"); }
+
+void BayesRule::reset(std::size_t cells) { map_.assign(cells, prior_); }
+
+void BayesRule::apply(const Footprint& fp) {
+  for (const CellEvidence& c : fp.cells) {
+    // Paper 001 maps evidence to [0, 0.5] (empty) and [0.5, 1] (occupied): P = 0.5 + (pO − pE)/2.
+    const double p = input_ == Input::Evidence ? 0.5 + 0.5 * (c.occupied - c.empty) : c.probability;
+    double& m = map_[c.cell];
+    const double num = p * m;
+    const double den = num + (1.0 - p) * (1.0 - m);
+    // den = 0 only when certain evidence meets a certain opposite cell; Bayes is undefined there
+    // and the cell keeps its value.
+    if (den > 0.0) m = num / den;
+  }
+}
+
+}  // namespace sg

@@ -1,1 +1,58 @@
-// placeholder: replaced by its owner
+// Dempster–Shafer combination over the frame {occupied, empty} (Murphy, Introduction to AI
+// Robotics, 2000, §11.4; none of the three papers implements it). A reading's masses are
+// m(occ) = pO, m(emp) = pE, m(unknown) = 1 − pO − pE. Dempster's rule:
+//   K = m1(occ) m2(emp) + m1(emp) m2(occ)
+//   m(occ) = (m1(occ) m2(occ) + m1(occ) m2(unk) + m1(unk) m2(occ)) / (1 − K)
+//   m(emp) likewise, m(unk) = m1(unk) m2(unk) / (1 − K).
+// p(occ) is the pignistic probability m(occ) + m(unk)/2.
+
+#include <algorithm>
+
+#include "sonargrid/rules/rule_classes.h"
+
+namespace sg {
+
+const RuleInfo& DempsterShaferRule::staticInfo() {
+  static const RuleInfo info{"dempster-shafer", "Dempster–Shafer", "Murphy 2000 §11.4 (Dempster's rule of combination)",
+                             "m(occ) − m(emp)", {}};
+  return info;
+}
+
+void DempsterShaferRule::configure(const ParameterSet& /*params*/) {}
+
+void DempsterShaferRule::reset(std::size_t cells) {
+  occ_.assign(cells, 0.0);
+  emp_.assign(cells, 0.0);
+}
+
+void DempsterShaferRule::apply(const Footprint& fp) {
+  for (const CellEvidence& c : fp.cells) {
+    double o = std::clamp(c.occupied, 0.0, 1.0);
+    double e = std::clamp(c.empty, 0.0, 1.0);
+    if (o + e > 1.0) {  // no model gives both, but masses must sum to at most one
+      const double s = o + e;
+      o /= s;
+      e /= s;
+    }
+    const double u = 1.0 - o - e;
+    double& mo = occ_[c.cell];
+    double& me = emp_[c.cell];
+    const double mu = 1.0 - mo - me;
+    const double conflict = mo * e + me * o;
+    // Total conflict (a certain cell meets certain opposite evidence) leaves Dempster's rule
+    // undefined; the cell keeps its masses.
+    if (conflict >= 1.0) continue;
+    const double norm = 1.0 / (1.0 - conflict);
+    const double newOcc = (mo * o + mo * u + mu * o) * norm;
+    const double newEmp = (me * e + me * u + mu * e) * norm;
+    mo = newOcc;
+    me = newEmp;
+  }
+}
+
+double DempsterShaferRule::occupancy(std::size_t i) const {
+  const double mu = 1.0 - occ_[i] - emp_[i];
+  return occ_[i] + 0.5 * mu;
+}
+
+}  // namespace sg

@@ -1,1 +1,50 @@
-// placeholder: replaced by its owner
+#include <stdexcept>
+
+#include "sonargrid/rules/rule_classes.h"
+
+namespace sg {
+
+std::vector<std::string> updateRuleNames() {
+  return {"addition", "bayes", "bayes-recursive", "log", "logodds", "himm", "dempster-shafer"};
+}
+
+std::unique_ptr<UpdateRule> makeUpdateRule(const std::string& name) {
+  std::unique_ptr<UpdateRule> r;
+  if (name == "addition") r = std::make_unique<AdditionRule>();
+  else if (name == "bayes") r = std::make_unique<BayesRule>(BayesRule::Input::Evidence);
+  else if (name == "bayes-recursive") r = std::make_unique<BayesRule>(BayesRule::Input::Likelihood);
+  else if (name == "log") r = std::make_unique<LogRule>();
+  else if (name == "logodds") r = std::make_unique<LogOddsRule>();
+  else if (name == "himm") r = std::make_unique<HimmRule>();
+  else if (name == "dempster-shafer") r = std::make_unique<DempsterShaferRule>();
+  if (r) r->configure(ParameterSet(r->info().parameters));
+  return r;
+}
+
+const RuleInfo& updateRuleInfo(const std::string& name) {
+  if (name == "addition") return AdditionRule::staticInfo();
+  if (name == "bayes") return BayesRule::evidenceInfo();
+  if (name == "bayes-recursive") return BayesRule::likelihoodInfo();
+  if (name == "log") return LogRule::staticInfo();
+  if (name == "logodds") return LogOddsRule::staticInfo();
+  if (name == "himm") return HimmRule::staticInfo();
+  if (name == "dempster-shafer") return DempsterShaferRule::staticInfo();
+  throw std::invalid_argument("unknown update rule '" + name + "'");
+}
+
+Compatibility compatibility(const std::string& model, const std::string& rule) {
+  // docs/models.md carries this table with the same reasons.
+  if (rule == "himm" && model != "himm") {
+    return {false,
+            "the HIMM histogram adds I+ to one cell per reading on the acoustic axis (paper 000 §2.2); a cone "
+            "model writes hundreds of cells per reading and would raise the whole arc"};
+  }
+  if (model == "himm" && rule == "addition") {
+    return {false,
+            "probability addition normalises each reading's occupied arc to sum 1 (paper 001 §3.1); HIMM's arc "
+            "is one cell, so every echo would set Occ to 1"};
+  }
+  return {};
+}
+
+}  // namespace sg

@@ -1,0 +1,120 @@
+#pragma once
+// The concrete update rules. Only the registry and tests need these names.
+
+#include <vector>
+
+#include "sonargrid/rules/update_rule.h"
+
+namespace sg {
+
+// Probability addition (paper 000 eqs 7–8, paper 001 §3.1).
+class AdditionRule final : public UpdateRule {
+ public:
+  static const RuleInfo& staticInfo();
+  const RuleInfo& info() const override { return staticInfo(); }
+  void configure(const ParameterSet& params) override;
+  void reset(std::size_t cells) override;
+  void apply(const Footprint& footprint) override;
+  double occupancy(std::size_t cell) const override;
+  double native(std::size_t cell) const override;
+  bool filled(std::size_t cell) const override { return occ_[cell] > emp_[cell]; }
+
+ private:
+  bool paper001Combine_ = false;
+  bool normalise_ = true;
+  std::vector<double> emp_, occ_;
+};
+
+// Bayes' rule on one p(occ) layer. `Input::Evidence` is paper 001 §3.2 (pE ↦ (1 − pE)/2,
+// pO ↦ 0.5 + pO/2); `Input::Likelihood` is paper 002 eqs 5–6, fed the model's P(s|Occ).
+class BayesRule final : public UpdateRule {
+ public:
+  enum class Input { Evidence, Likelihood };
+  explicit BayesRule(Input input) : input_(input) {}
+  static const RuleInfo& evidenceInfo();
+  static const RuleInfo& likelihoodInfo();
+  const RuleInfo& info() const override { return input_ == Input::Evidence ? evidenceInfo() : likelihoodInfo(); }
+  void configure(const ParameterSet& params) override;
+  void reset(std::size_t cells) override;
+  void apply(const Footprint& footprint) override;
+  double occupancy(std::size_t cell) const override { return map_[cell]; }
+  double native(std::size_t cell) const override { return map_[cell]; }
+  bool filled(std::size_t cell) const override { return map_[cell] > 0.5; }
+
+ private:
+  Input input_;
+  double prior_ = 0.5;
+  std::vector<double> map_;
+};
+
+// The log method of paper 001 §3.3 as a sum of logs, cut to [cut_min, cut_max].
+class LogRule final : public UpdateRule {
+ public:
+  static const RuleInfo& staticInfo();
+  const RuleInfo& info() const override { return staticInfo(); }
+  void configure(const ParameterSet& params) override;
+  void reset(std::size_t cells) override;
+  void apply(const Footprint& footprint) override;
+  double occupancy(std::size_t cell) const override;
+  double native(std::size_t cell) const override;
+  bool filled(std::size_t cell) const override { return native(cell) > 0.0; }
+
+ private:
+  double cutMin_ = -2.0, cutMax_ = 2.0;
+  std::vector<double> logEmp_, logOcc_;  // log10 Emp, log10 Occ
+};
+
+// Clamped log-odds (Thrun; OctoMap's AbstractOccupancyOcTree).
+class LogOddsRule final : public UpdateRule {
+ public:
+  static const RuleInfo& staticInfo();
+  const RuleInfo& info() const override { return staticInfo(); }
+  void configure(const ParameterSet& params) override;
+  void reset(std::size_t cells) override;
+  void apply(const Footprint& footprint) override;
+  double occupancy(std::size_t cell) const override;
+  double native(std::size_t cell) const override { return logOdds_[cell]; }
+  bool filled(std::size_t cell) const override { return logOdds_[cell] > 0.0; }
+
+ private:
+  double priorLogOdds_ = 0.0, minLogOdds_ = 0.0, maxLogOdds_ = 0.0;
+  std::vector<double> logOdds_;
+};
+
+// HIMM's histogram (paper 000 §2.2): integer certainty values.
+class HimmRule final : public UpdateRule {
+ public:
+  static const RuleInfo& staticInfo();
+  const RuleInfo& info() const override { return staticInfo(); }
+  void configure(const ParameterSet& params) override;
+  void reset(std::size_t cells) override;
+  void apply(const Footprint& footprint) override;
+  double occupancy(std::size_t cell) const override { return cv_[cell] / double(cvMax_); }
+  double native(std::size_t cell) const override { return cv_[cell]; }
+  bool filled(std::size_t cell) const override { return cv_[cell] > 0; }
+  std::uint8_t level(std::size_t cell) const override { return cv_[cell]; }
+
+ private:
+  int increment_ = 3, decrement_ = 1, cvMax_ = 15;
+  std::vector<std::uint8_t> cv_;
+};
+
+// Dempster–Shafer evidence combination over {occupied, empty} (Murphy 2000 §11.4).
+class DempsterShaferRule final : public UpdateRule {
+ public:
+  static const RuleInfo& staticInfo();
+  const RuleInfo& info() const override { return staticInfo(); }
+  void configure(const ParameterSet& params) override;
+  void reset(std::size_t cells) override;
+  void apply(const Footprint& footprint) override;
+  double occupancy(std::size_t cell) const override;
+  double native(std::size_t cell) const override { return occ_[cell] - emp_[cell]; }
+  bool filled(std::size_t cell) const override { return occ_[cell] > emp_[cell]; }
+  double massOccupied(std::size_t cell) const { return occ_[cell]; }
+  double massEmpty(std::size_t cell) const { return emp_[cell]; }
+
+ private:
+  std::vector<double> occ_, emp_;  // m(occ), m(emp); m(unknown) = 1 − both
+};
+
+}  // namespace sg
