@@ -1,6 +1,230 @@
+// The mapper: batch equals incremental bit for bit, "until t" equals the prefix of the log,
+// results are deterministic, and the errors a user can cause are reported.
+
 #include <QtTest>
-class Tstmapper : public QObject {
+#include <cmath>
+#include <set>
+
+#include "sonargrid/mapper.h"
+
+using namespace sg;
+
+namespace {
+
+// A robot driving along a corridor whose walls are at y = ±1.2 m. Each sonar reports the nearest
+// wall point inside its 25° cone, as a sonar does: the perpendicular distance when the normal lies in
+// the cone, else the distance along the cone edge nearest the normal. Every fifth reading is a
+// no-echo. Odometry drifts from the truth by 1 mm per scan.
+Dataset corridor(int scans = 60) {
+  Dataset d;
+  d.name = "corridor";
+  d.ring = SonarRing::pioneer3dx();
+  const double half = d.ring.apertureRad / 2;
+  for (int k = 0; k < scans; ++k) {
+    Scan s;
+    s.time = 0.1 * k;
+    s.truth = Pose2D(0.05 * k, 0.0, 0.0);
+    s.odometry = Pose2D(0.05 * k, 0.001 * k, 0.0);
+    for (std::uint16_t i = 0; i < d.ring.size(); ++i) {
+      const Pose2D sensor = s.truth->compose(d.ring.sonars[i].pose);
+      const double h = sensor.heading;
+      const bool north = std::sin(h) > 0;
+      const double perpendicular = north ? 1.2 - sensor.y() : sensor.y() + 1.2;
+      const double normal = north ? std::numbers::pi / 2 : -std::numbers::pi / 2;
+      const double off = std::abs(wrapAngle(normal - h));
+      const double toNormal = off <= half ? 0.0 : off - half;  // cone direction closest to the normal
+      double range = perpendicular / std::cos(toNormal);
+      if (toNormal > degToRad(60) || range >= d.ring.maxRange) range = Reading::kNoEcho;
+      if ((k * 16 + i) % 5 == 0) range = Reading::kNoEcho;
+      s.readings.push_back(Reading{i, range, s.time + 0.002 * i});
+    }
+    d.scans.push_back(std::move(s));
+  }
+  return d;
+}
+
+std::vector<std::pair<std::string, std::string>> allPairs() {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& m : sensorModelNames())
+    for (const auto& r : updateRuleNames())
+      if (compatibility(m, r).allowed) out.emplace_back(m, r);
+  return out;
+}
+
+bool sameLayers(const OccupancyMap& a, const OccupancyMap& b) {
+  // Bit-identical: compare the doubles' bytes, not their values within a tolerance.
+  return a.spec == b.spec && a.level == b.level && a.filled == b.filled && a.observed == b.observed &&
+         std::memcmp(a.probability.data(), b.probability.data(), a.probability.size() * sizeof(double)) == 0 &&
+         std::memcmp(a.native.data(), b.native.data(), a.native.size() * sizeof(double)) == 0;
+}
+
+}  // namespace
+
+class TstMapper : public QObject {
   Q_OBJECT
+
+ private slots:
+  void batchEqualsIncremental_data();
+  void batchEqualsIncremental();
+  void untilIsAPrefix();
+  void deterministic();
+  void poseSource();
+  void buildsWalls();
+  void errors();
+  void cancel();
 };
-QTEST_GUILESS_MAIN(Tstmapper)
+
+void TstMapper::batchEqualsIncremental_data() {
+  QTest::addColumn<QString>("model");
+  QTest::addColumn<QString>("rule");
+  for (const auto& [m, r] : allPairs()) QTest::newRow((m + "/" + r).c_str()) << QString::fromStdString(m) << QString::fromStdString(r);
+}
+
+void TstMapper::batchEqualsIncremental() {
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  const Dataset d = corridor();
+  MapperSettings s;
+  s.model = model.toStdString();
+  s.rule = rule.toStdString();
+  const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
+  Mapper batch(d.ring, grid, s);
+  batch.mapDataset(d);
+  Mapper incremental(d.ring, grid, s);
+  for (const Scan& scan : d.scans) incremental.integrate(scan);
+  QCOMPARE(batch.readingsIntegrated(), d.readingCount());
+  QCOMPARE(incremental.readingsIntegrated(), d.readingCount());
+  QVERIFY(sameLayers(batch.snapshot(), incremental.snapshot()));
+  // A map with no evidence at all would make the comparison empty.
+  QVERIFY(batch.snapshot().filledCount() > 0);
+
+  // The same with no-echo readings clearing their cones.
+  s.parameters = defaultParameters(s.model, s.rule);
+  s.parameters.set("no_echo", 1.0);
+  Mapper batchFree(d.ring, grid, s), incrementalFree(d.ring, grid, s);
+  batchFree.mapDataset(d);
+  for (const Scan& scan : d.scans) incrementalFree.integrate(scan);
+  QVERIFY(sameLayers(batchFree.snapshot(), incrementalFree.snapshot()));
+  QVERIFY(!sameLayers(batchFree.snapshot(), batch.snapshot()));
+}
+
+void TstMapper::untilIsAPrefix() {
+  // Mapping up to t = 2.0105 s keeps exactly the readings stamped at or before it: scans 0..19
+  // whole (16 readings each) and, from scan 20 (t = 2.0 s, readings at 2.0 + 0.002 i), i = 0..5.
+  const Dataset d = corridor();
+  MapperSettings s;
+  s.model = "murphy";
+  s.rule = "bayes-recursive";
+  const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
+  Mapper until(d.ring, grid, s);
+  until.mapDataset(d, 2.0105);
+  QCOMPARE(until.readingsIntegrated(), std::size_t{20 * 16 + 6});
+
+  Dataset prefix = d;
+  prefix.scans.resize(21);
+  prefix.scans[20].readings.resize(6);
+  Mapper whole(d.ring, grid, s);
+  whole.mapDataset(prefix);
+  QVERIFY(sameLayers(until.snapshot(), whole.snapshot()));
+}
+
+void TstMapper::deterministic() {
+  const Dataset d = corridor();
+  MapperSettings s;
+  s.model = "konolige";
+  s.rule = "log";
+  const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
+  Mapper a(d.ring, grid, s), b(d.ring, grid, s);
+  a.mapDataset(d);
+  b.mapDataset(d);
+  a.mapDataset(d);  // re-mapping the same mapper starts from scratch
+  QVERIFY(sameLayers(a.snapshot(), b.snapshot()));
+}
+
+void TstMapper::poseSource() {
+  const Dataset d = corridor();
+  MapperSettings s;
+  s.model = "himm";
+  s.rule = "himm";
+  const GridSpec grid = d.fittingGrid(PoseSource::Truth, 0.05);
+  Mapper odom(d.ring, grid, s);
+  odom.mapDataset(d);
+  s.pose = PoseSource::Truth;
+  Mapper truth(d.ring, grid, s);
+  truth.mapDataset(d);
+  QVERIFY(!sameLayers(odom.snapshot(), truth.snapshot()));
+}
+
+void TstMapper::buildsWalls() {
+  // The corridor's walls are at y = ±1.2 m. HIMM puts each echo on the acoustic axis at the
+  // reported (nearest-in-cone) range, so an oblique sonar's echo lands short of the wall: at most
+  // for the ±30° sonars, whose nearest wall point is 60° − 12.5° = 47.5° off their axis, at
+  // axis point y = r sin 30° = d⊥ sin 30°/cos 47.5° = 0.74 d⊥, about 0.29 m short of the wall for
+  // d⊥ ≈ 1.1 m. So every filled cell lies within 0.35 m of a wall. The ±90° sonars hit the wall
+  // square on, twice per 5 cm column (sonars 0 and 15, 0.226 m apart), less the one reading in five
+  // the generator silences: along x = 1..2 m at least 15 of the 20 columns have a filled cell on
+  // each wall.
+  const Dataset d = corridor();
+  MapperSettings s;
+  s.model = "himm";
+  s.rule = "himm";
+  s.pose = PoseSource::Truth;
+  const GridSpec grid = d.fittingGrid(PoseSource::Truth, 0.05);
+  Mapper m(d.ring, grid, s);
+  m.mapDataset(d);
+  const OccupancyMap map = m.snapshot();
+  std::set<int> north, south;
+  for (std::size_t i = 0; i < map.filled.size(); ++i) {
+    if (!map.filled[i]) continue;
+    const Position c = grid.cellCentre(grid.fromLinear(i));
+    const double fromWall = std::abs(std::abs(c.y()) - 1.2);
+    QVERIFY2(fromWall <= 0.35, qPrintable(QString("filled cell at y = %1").arg(c.y())));
+    if (fromWall <= 0.025 + 1e-9 && c.x() > 1.0 && c.x() < 2.0) (c.y() > 0 ? north : south).insert(grid.fromLinear(i).x());
+  }
+  QVERIFY2(north.size() >= 15 && south.size() >= 15, qPrintable(QString("north %1 south %2").arg(north.size()).arg(south.size())));
+}
+
+void TstMapper::errors() {
+  const Dataset d = corridor(3);
+  const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
+  MapperSettings s;
+  s.model = "nope";
+  QVERIFY_THROWS_EXCEPTION(MapperError, Mapper(d.ring, grid, s));
+  s.model = "hpf";
+  s.rule = "himm";
+  try {
+    Mapper m(d.ring, grid, s);
+    QFAIL("an incompatible pair was accepted");
+  } catch (const MapperError& e) {
+    QVERIFY(std::string(e.what()).find("cannot be used with rule 'himm'") != std::string::npos);
+  }
+  s.rule = "bayes";
+  s.pose = PoseSource::Truth;
+  Dataset noTruth = d;
+  for (Scan& scan : noTruth.scans) scan.truth.reset();
+  Mapper m(d.ring, grid, s);
+  QVERIFY_THROWS_EXCEPTION(MapperError, m.mapDataset(noTruth));
+  Dataset badSonar = d;
+  badSonar.scans[1].readings[0].sonar = 16;
+  s.pose = PoseSource::Odometry;
+  Mapper m2(d.ring, grid, s);
+  QVERIFY_THROWS_EXCEPTION(MapperError, m2.mapDataset(badSonar));
+  // Parameters outside their declared range are refused where they are set.
+  ParameterSet p = defaultParameters("hpf", "bayes");
+  QVERIFY_THROWS_EXCEPTION(ParameterError, p.set("epsilon", -1.0));
+  QVERIFY_THROWS_EXCEPTION(ParameterError, p.set("epsilon", std::nan("")));
+  QVERIFY_THROWS_EXCEPTION(ParameterError, p.set("p4", 0.9));  // not a parameter of hpf × bayes
+}
+
+void TstMapper::cancel() {
+  const Dataset d = corridor();
+  MapperSettings s;
+  const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
+  Mapper m(d.ring, grid, s);
+  std::atomic<bool> stop{true};
+  QVERIFY(!m.mapDataset(d, std::numeric_limits<double>::infinity(), &stop));
+  QCOMPARE(m.readingsIntegrated(), std::size_t{0});
+}
+
+QTEST_GUILESS_MAIN(TstMapper)
 #include "tst_mapper.moc"

@@ -1,0 +1,83 @@
+#pragma once
+// Mapper = SensorModel × UpdateRule × parameters × GridSpec (DESIGN.md, "Data flow"). Batch mapping
+// (a whole log, or up to time t) is incremental mapping run over the scans in order, so both give
+// bit-identical grids, and the result depends on nothing but the inputs.
+
+#include <atomic>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sonargrid/beam_tables.h"
+#include "sonargrid/dataset.h"
+#include "sonargrid/footprint.h"
+#include "sonargrid/models/sensor_model.h"
+#include "sonargrid/occupancy_map.h"
+#include "sonargrid/parameters.h"
+#include "sonargrid/rules/update_rule.h"
+
+namespace sg {
+
+class MapperError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Model, rule and their parameters: what a user picks.
+struct MapperSettings {
+  std::string model = "hpf";
+  std::string rule = "addition";
+  ParameterSet parameters;  // the model's and the rule's, by name; see defaultParameters()
+  PoseSource pose = PoseSource::Odometry;
+};
+
+// Every parameter the model and the rule declare, at its default. Throws MapperError on an unknown
+// model or rule name.
+ParameterSet defaultParameters(const std::string& model, const std::string& rule);
+
+class Mapper {
+ public:
+  // Throws MapperError for an unknown model or rule, an incompatible pair (with the reason), or an
+  // empty grid.
+  Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings& settings);
+
+  const GridSpec& grid() const { return grid_; }
+  const MapperSettings& settings() const { return settings_; }
+  const SensorModel& model() const { return *model_; }
+  const UpdateRule& rule() const { return *rule_; }
+
+  // Forgets every reading.
+  void reset();
+
+  // Incremental mapping: folds in one scan's readings whose time is at most `until`. Throws
+  // MapperError when a reading names a sonar the ring does not have.
+  void integrate(const Scan& scan, double until = std::numeric_limits<double>::infinity());
+
+  // Batch mapping: resets, then integrates every scan (readings up to `until`). Checks `cancel`
+  // between scans; returns false when it was cancelled (the grid then holds a prefix of the log).
+  bool mapDataset(const Dataset& dataset, double until = std::numeric_limits<double>::infinity(),
+                  const std::atomic<bool>* cancel = nullptr);
+
+  std::size_t readingsIntegrated() const { return readings_; }
+  OccupancyMap snapshot() const;
+
+  // The cells one reading writes, as the model gives them (for the beam view and tests).
+  Footprint footprintOf(const Pose2D& robot, const Reading& reading) const;
+
+ private:
+  Beam beamOf(const Pose2D& robot, const Reading& reading) const;
+
+  SonarRing ring_;
+  GridSpec grid_;
+  MapperSettings settings_;
+  std::unique_ptr<SensorModel> model_;
+  std::unique_ptr<UpdateRule> rule_;
+  std::shared_ptr<const BeamTables> tables_;
+  std::vector<std::uint8_t> observed_;
+  Footprint scratch_;
+  std::size_t readings_ = 0;
+};
+
+}  // namespace sg
