@@ -1,1 +1,75 @@
-// placeholder: replaced by its owner
+#include "arguments.h"
+
+#include <charconv>
+#include <cmath>
+#include <sstream>
+
+namespace sg::cli {
+
+double parseNumber(const std::string& text, const std::string& what) {
+  double v = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, v);
+  if (ec != std::errc() || ptr != end || !std::isfinite(v)) {
+    throw UsageError(what + " expects a number, got '" + text + "'");
+  }
+  return v;
+}
+
+bool Arguments::flag(const std::string& name) {
+  for (auto it = args_.begin(); it != args_.end(); ++it) {
+    if (*it == name) {
+      args_.erase(it);
+      return true;
+    }
+  }
+  return false;
+}
+
+std::optional<std::string> Arguments::value(const std::string& name) {
+  std::vector<std::string> all = values(name);
+  if (all.size() > 1) throw UsageError(name + " is given " + std::to_string(all.size()) + " times");
+  if (all.empty()) return std::nullopt;
+  return all.front();
+}
+
+std::vector<std::string> Arguments::values(const std::string& name) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < args_.size();) {
+    if (args_[i] == name) {
+      if (i + 1 >= args_.size() || args_[i + 1].rfind("--", 0) == 0) throw UsageError(name + " needs a value");
+      out.push_back(args_[i + 1]);
+      args_.erase(args_.begin() + static_cast<std::ptrdiff_t>(i), args_.begin() + static_cast<std::ptrdiff_t>(i) + 2);
+    } else if (args_[i].rfind(name + "=", 0) == 0) {
+      out.push_back(args_[i].substr(name.size() + 1));
+      args_.erase(args_.begin() + static_cast<std::ptrdiff_t>(i));
+    } else {
+      ++i;
+    }
+  }
+  return out;
+}
+
+std::string Arguments::required(const std::string& name) {
+  auto v = value(name);
+  if (!v) throw UsageError("missing " + name);
+  return *v;
+}
+
+double Arguments::number(const std::string& name, double fallback, double min, double max) {
+  auto v = value(name);
+  if (!v) return fallback;
+  const double x = parseNumber(*v, name);
+  if (x < min || x > max) {
+    std::ostringstream msg;
+    msg << name << " must be between " << min << " and " << max << ", got " << *v;
+    throw UsageError(msg.str());
+  }
+  return x;
+}
+
+void Arguments::finish() const {
+  if (!args_.empty()) throw UsageError("unexpected argument '" + args_.front() + "'");
+}
+
+}  // namespace sg::cli

@@ -1,1 +1,54 @@
-int main() { return 0; }
+// sonargrid-cli: the headless face of SonarGrid. Exit status: 0 success, 2 bad arguments or input
+// the user must fix (one line on stderr says what), 1 anything else (e.g. an output not written).
+
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: sonargrid-cli COMMAND [OPTIONS]
+
+commands:
+  models [--json]            list sensor models, update rules, their parameters and allowed pairs
+  map --log FILE --model M --rule R [--pose odom|truth] [--set NAME=VALUE]...
+      [--cell METRES] [--until SECONDS] [--png FILE [--legend] [--scale N]]
+      [--ros-map BASENAME] [--json]
+                             build an occupancy grid from a log
+  help                       this text
+
+See docs/cli.md for the full contract.
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> raw(argv + 1, argv + argc);
+  if (raw.empty()) {
+    std::cerr << kUsage;
+    return 2;
+  }
+  const std::string command = raw.front();
+  sg::cli::Arguments args(std::vector<std::string>(raw.begin() + 1, raw.end()));
+  try {
+    if (command == "help" || command == "--help" || command == "-h") {
+      std::cout << kUsage;
+      return 0;
+    }
+    if (command == "models") return sg::cli::runModels(args);
+    if (command == "map") return sg::cli::runMap(args);
+    throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
+  } catch (const sg::cli::UsageError& e) {
+    std::cerr << "sonargrid-cli: " << e.what() << '\n';
+    return 2;
+  } catch (const sg::cli::InputError& e) {
+    std::cerr << "sonargrid-cli: " << e.what() << '\n';
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "sonargrid-cli: " << e.what() << '\n';
+    return 1;
+  }
+}

@@ -1,0 +1,11 @@
+#pragma once
+// The subcommands of sonargrid-cli (docs/cli.md). Each returns the process exit status.
+
+#include "arguments.h"
+
+namespace sg::cli {
+
+int runModels(Arguments& args);
+int runMap(Arguments& args);
+
+}  // namespace sg::cli

@@ -1,0 +1,36 @@
+#pragma once
+// The flags every command that builds a map shares (`map` now; `score` and `goodness` later):
+// --log, --pose, --model, --rule, --set, --cell, --until.
+
+#include <limits>
+#include <string>
+
+#include "arguments.h"
+#include "sonargrid/dataset.h"
+#include "sonargrid/mapper.h"
+#include "sonargrid/occupancy_map.h"
+
+namespace sg::cli {
+
+struct MapOptions {
+  std::string log;
+  MapperSettings settings;
+  double cell = 0.05;
+  double until = std::numeric_limits<double>::infinity();
+};
+
+// Consumes the map flags; throws UsageError for bad or missing ones and InputError for an unknown
+// or incompatible model/rule or a bad --set.
+MapOptions parseMapOptions(Arguments& args);
+
+// Reads the log (InputError naming file, line and field when it is malformed).
+Dataset loadLog(const std::string& path);
+
+struct BuiltMap {
+  OccupancyMap map;
+  std::size_t readings = 0;
+  double elapsedMs = 0.0;  // mapping only, not reading the log
+};
+BuiltMap buildMap(const Dataset& data, const MapOptions& options);
+
+}  // namespace sg::cli
