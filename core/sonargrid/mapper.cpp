@@ -39,6 +39,12 @@ void Mapper::reset() {
   rule_->reset(grid_.cellCount());
   observed_.assign(grid_.cellCount(), 0);
   readings_ = 0;
+  if (observer_) observer_->reset(grid_.cellCount());
+}
+
+void Mapper::setObserver(FootprintObserver* observer) {
+  observer_ = observer;
+  if (observer_) observer_->reset(grid_.cellCount());
 }
 
 Beam Mapper::beamOf(const Pose2D& robot, const Reading& reading) const {
@@ -67,6 +73,7 @@ void Mapper::integrate(const Scan& scan, double until) {
     scratch_.clear();
     model_->footprint(beamOf(robot, r), grid_, *tables_, scratch_);
     rule_->apply(scratch_);
+    if (observer_) observer_->observe(scratch_);
     for (const CellEvidence& c : scratch_.cells) observed_[c.cell] = 1;
     ++readings_;
   }

@@ -25,6 +25,15 @@ class MapperError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Sees every reading's footprint, in reading order, as the rule applies it: how per-cell statistics
+// of the model's outputs (VSDNS, paper 002 §5) are streamed without storing them.
+class FootprintObserver {
+ public:
+  virtual ~FootprintObserver() = default;
+  virtual void reset(std::size_t cells) = 0;
+  virtual void observe(const Footprint& footprint) = 0;
+};
+
 // Model, rule and their parameters: what a user picks.
 struct MapperSettings {
   std::string model = "hpf";
@@ -61,6 +70,9 @@ class Mapper {
                   const std::atomic<bool>* cancel = nullptr);
 
   std::size_t readingsIntegrated() const { return readings_; }
+
+  // Optional; not owned. Reset with the mapper and fed every footprint after the rule applies it.
+  void setObserver(FootprintObserver* observer);
   OccupancyMap snapshot() const;
 
   // The cells one reading writes, as the model gives them (for the beam view and tests).
@@ -77,6 +89,7 @@ class Mapper {
   std::shared_ptr<const BeamTables> tables_;
   std::vector<std::uint8_t> observed_;
   Footprint scratch_;
+  FootprintObserver* observer_ = nullptr;
   std::size_t readings_ = 0;
 };
 
