@@ -1,6 +1,7 @@
 #include "sonargrid/dataset.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace sg {
 
@@ -15,17 +16,28 @@ bool Dataset::hasTruth() const {
 }
 
 GridSpec Dataset::fittingGrid(PoseSource source, double cellSize, double margin) const {
-  if (scans.empty()) return GridSpec::covering(Position(0, 0), Position(0, 0), cellSize, margin);
-  Position lo = pose(scans.front(), source).position;
-  Position hi = lo;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Position lo(kInf, kInf), hi(-kInf, -kInf);
+  bool anyEcho = false;
   for (const Scan& s : scans) {
-    const Position& p = pose(s, source).position;
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
+    const Pose2D& robot = pose(s, source);
+    for (const Reading& r : s.readings) {
+      if (r.sonar >= ring.size()) continue;  // the mapper reports it
+      const Pose2D sensor = robot.compose(ring.sonars[r.sonar].pose);
+      lo = lo.cwiseMin(sensor.position);
+      hi = hi.cwiseMax(sensor.position);
+      if (r.echo() && r.range < ring.maxRange) {
+        const Position end = sensor.transform(Position(r.range, 0.0));
+        lo = lo.cwiseMin(end);
+        hi = hi.cwiseMax(end);
+        anyEcho = true;
+      }
+    }
+    lo = lo.cwiseMin(robot.position);
+    hi = hi.cwiseMax(robot.position);
   }
-  double reach = 0.0;
-  for (const SonarMount& m : ring.sonars) reach = std::max(reach, m.pose.position.norm());
-  return GridSpec::covering(lo, hi, cellSize, reach + ring.maxRange + margin);
+  if (scans.empty()) return GridSpec::covering(Position(0, 0), Position(0, 0), cellSize, margin);
+  return GridSpec::covering(lo, hi, cellSize, anyEcho ? margin : ring.maxRange + margin);
 }
 
 }  // namespace sg

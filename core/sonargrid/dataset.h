@@ -49,9 +49,10 @@ struct Dataset {
   const Pose2D& pose(const Scan& s, PoseSource source) const {
     return source == PoseSource::Truth && s.truth ? *s.truth : s.odometry;
   }
-  // The grid of `cellSize` that holds every robot pose grown by the ring's maximum range plus
-  // `margin` metres.
-  GridSpec fittingGrid(PoseSource source, double cellSize, double margin = 0.5) const;
+  // The grid of `cellSize` that holds every sonar position and every echo (the point at the
+  // reading's range on the acoustic axis), grown by `margin` metres on each side for the cones'
+  // width. A log without a single echo gets the sonar positions grown by the maximum range.
+  GridSpec fittingGrid(PoseSource source, double cellSize, double margin = 1.0) const;
 
   bool operator==(const Dataset&) const = default;
 };

@@ -14,11 +14,18 @@
 
 namespace sg {
 
+// Single precision keeps a cell's entry at 16 bytes: a re-map streams ~10⁸ of them, and the
+// models are heuristics whose 7 significant digits are more than they mean. Rules accumulate in
+// double.
 struct CellEvidence {
   std::uint32_t cell = 0;  // linear index into the grid
-  double empty = 0.0;
-  double occupied = 0.0;
-  double probability = 0.5;
+  float empty = 0.0f;
+  float occupied = 0.0f;
+  float probability = 0.5f;
+
+  CellEvidence() = default;
+  CellEvidence(std::uint32_t c, double e, double o, double p)
+      : cell(c), empty(static_cast<float>(e)), occupied(static_cast<float>(o)), probability(static_cast<float>(p)) {}
 };
 
 struct Footprint {

@@ -1,5 +1,9 @@
 #include "sonargrid/mapper.h"
 
+#include <algorithm>
+#include <exception>
+#include <thread>
+
 namespace sg {
 
 ParameterSet defaultParameters(const std::string& model, const std::string& rule) {
@@ -66,16 +70,20 @@ Footprint Mapper::footprintOf(const Pose2D& robot, const Reading& reading) const
   return fp;
 }
 
+void Mapper::applyFootprint(const Footprint& footprint) {
+  rule_->apply(footprint);
+  if (observer_) observer_->observe(footprint);
+  for (const CellEvidence& c : footprint.cells) observed_[c.cell] = 1;
+  ++readings_;
+}
+
 void Mapper::integrate(const Scan& scan, double until) {
   const Pose2D& robot = settings_.pose == PoseSource::Truth && scan.truth ? *scan.truth : scan.odometry;
   for (const Reading& r : scan.readings) {
     if (r.time > until) continue;
     scratch_.clear();
     model_->footprint(beamOf(robot, r), grid_, *tables_, scratch_);
-    rule_->apply(scratch_);
-    if (observer_) observer_->observe(scratch_);
-    for (const CellEvidence& c : scratch_.cells) observed_[c.cell] = 1;
-    ++readings_;
+    applyFootprint(scratch_);
   }
 }
 
@@ -84,11 +92,125 @@ bool Mapper::mapDataset(const Dataset& dataset, double until, const std::atomic<
     throw MapperError("the log has no true pose for every scan; map with odometry (--pose odom)");
   }
   reset();
+  std::vector<Beam> beams;
+  beams.reserve(dataset.readingCount());
   for (const Scan& scan : dataset.scans) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) return false;
-    integrate(scan, until);
+    const Pose2D& robot = dataset.pose(scan, settings_.pose);
+    for (const Reading& r : scan.readings) {
+      if (r.time <= until) beams.push_back(beamOf(robot, r));
+    }
   }
-  return true;
+  return integrateBeams(beams, cancel);
+}
+
+namespace {
+
+// How often batch mapping looks at the cancel flag, in readings.
+constexpr std::size_t kCancelStride = 256;
+// Below this many readings a thread costs more than it saves.
+constexpr std::size_t kParallelMinimum = 4096;
+// Footprints computed ahead of the one being applied: enough to keep the workers busy, few enough
+// that their buffers stay in cache.
+constexpr std::size_t kSlots = 64;
+constexpr std::int64_t kEmptySlot = -1;
+
+// An ordered pipeline: any thread may compute footprint i once its slot (i mod kSlots) is free;
+// only the applying thread folds them into the grid, strictly in order 0, 1, 2, ...
+struct Pipeline {
+  struct Slot {
+    Footprint footprint;
+    std::atomic<std::int64_t> holds{kEmptySlot};  // index of the footprint in it, once complete
+  };
+  std::vector<Slot> slots{kSlots};
+  std::atomic<std::size_t> next{0};     // next footprint nobody has claimed
+  std::atomic<std::size_t> applied{0};  // footprints folded in so far
+  std::atomic<bool> stop{false};
+  std::exception_ptr failure;
+};
+
+}  // namespace
+
+bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bool>* cancel) {
+  const std::size_t n = beams.size();
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned workers = n < kParallelMinimum ? 0u : std::min(cores - 1, 3u);
+  if (workers == 0) {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (cancel && i % kCancelStride == 0 && cancel->load(std::memory_order_relaxed)) return false;
+      scratch_.clear();
+      model_->footprint(beams[i], grid_, *tables_, scratch_);
+      applyFootprint(scratch_);
+    }
+    return true;
+  }
+
+  Pipeline p;
+  auto compute = [&](std::size_t i) {
+    Pipeline::Slot& slot = p.slots[i % kSlots];
+    slot.footprint.clear();
+    model_->footprint(beams[i], grid_, *tables_, slot.footprint);
+    slot.holds.store(static_cast<std::int64_t>(i), std::memory_order_release);
+    slot.holds.notify_one();
+  };
+  auto work = [&] {
+    try {
+      while (!p.stop.load(std::memory_order_relaxed)) {
+        const std::size_t i = p.next.fetch_add(1, std::memory_order_relaxed);
+        if (i >= n) return;
+        // Slot i mod kSlots still holds footprint i − kSlots until that one is applied.
+        for (std::size_t a = p.applied.load(std::memory_order_acquire); i >= a + kSlots;
+             a = p.applied.load(std::memory_order_acquire)) {
+          if (p.stop.load(std::memory_order_relaxed)) return;
+          p.applied.wait(a, std::memory_order_acquire);
+        }
+        compute(i);
+      }
+    } catch (...) {
+      p.failure = std::current_exception();
+      p.stop.store(true);
+    }
+  };
+  std::vector<std::thread> threads;
+  for (unsigned k = 0; k < workers; ++k) threads.emplace_back(work);
+  auto finish = [&] {
+    p.stop.store(true);
+    p.applied.fetch_add(kSlots);  // wake any worker waiting for a slot
+    p.applied.notify_all();
+    for (std::thread& t : threads) t.join();
+  };
+
+  bool completed = true;
+  try {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (cancel && i % kCancelStride == 0 && cancel->load(std::memory_order_relaxed)) {
+        completed = false;
+        break;
+      }
+      Pipeline::Slot& slot = p.slots[i % kSlots];
+      for (std::int64_t held = slot.holds.load(std::memory_order_acquire); held != static_cast<std::int64_t>(i);
+           held = slot.holds.load(std::memory_order_acquire)) {
+        if (p.stop.load(std::memory_order_relaxed)) break;
+        // Rather than wait, compute the next unclaimed footprint if its slot is free.
+        std::size_t j = p.next.load(std::memory_order_relaxed);
+        if (j < n && j < i + kSlots &&
+            p.next.compare_exchange_weak(j, j + 1, std::memory_order_relaxed)) {
+          compute(j);
+          continue;
+        }
+        slot.holds.wait(held, std::memory_order_acquire);
+      }
+      if (p.stop.load(std::memory_order_relaxed)) break;
+      applyFootprint(slot.footprint);
+      p.applied.store(i + 1, std::memory_order_release);
+      p.applied.notify_all();
+    }
+  } catch (...) {
+    finish();
+    throw;
+  }
+  finish();
+  if (p.failure) std::rethrow_exception(p.failure);
+  return completed;
 }
 
 OccupancyMap Mapper::snapshot() const {

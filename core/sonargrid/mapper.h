@@ -4,6 +4,7 @@
 // bit-identical grids, and the result depends on nothing but the inputs.
 
 #include <atomic>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -65,7 +66,9 @@ class Mapper {
   void integrate(const Scan& scan, double until = std::numeric_limits<double>::infinity());
 
   // Batch mapping: resets, then integrates every scan (readings up to `until`). Checks `cancel`
-  // between scans; returns false when it was cancelled (the grid then holds a prefix of the log).
+  // every few hundred readings; returns false when it was cancelled (the grid then holds a prefix
+  // of the log). Footprints are computed on several threads and applied in log order, so the
+  // result is bit-identical to integrate() scan by scan.
   bool mapDataset(const Dataset& dataset, double until = std::numeric_limits<double>::infinity(),
                   const std::atomic<bool>* cancel = nullptr);
 
@@ -80,6 +83,8 @@ class Mapper {
 
  private:
   Beam beamOf(const Pose2D& robot, const Reading& reading) const;
+  void applyFootprint(const Footprint& footprint);
+  bool integrateBeams(const std::vector<Beam>& beams, const std::atomic<bool>* cancel);
 
   SonarRing ring_;
   GridSpec grid_;

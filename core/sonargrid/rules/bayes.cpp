@@ -27,7 +27,9 @@ void BayesRule::reset(std::size_t cells) { map_.assign(cells, prior_); }
 void BayesRule::apply(const Footprint& fp) {
   for (const CellEvidence& c : fp.cells) {
     // Paper 001 maps evidence to [0, 0.5] (empty) and [0.5, 1] (occupied): P = 0.5 + (pO − pE)/2.
-    const double p = input_ == Input::Evidence ? 0.5 + 0.5 * (c.occupied - c.empty) : c.probability;
+    const double p = input_ == Input::Evidence
+                         ? 0.5 + 0.5 * (static_cast<double>(c.occupied) - static_cast<double>(c.empty))
+                         : static_cast<double>(c.probability);
     double& m = map_[c.cell];
     const double num = p * m;
     const double den = num + (1.0 - p) * (1.0 - m);

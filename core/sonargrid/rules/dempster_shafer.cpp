@@ -27,8 +27,8 @@ void DempsterShaferRule::reset(std::size_t cells) {
 
 void DempsterShaferRule::apply(const Footprint& fp) {
   for (const CellEvidence& c : fp.cells) {
-    double o = std::clamp(c.occupied, 0.0, 1.0);
-    double e = std::clamp(c.empty, 0.0, 1.0);
+    double o = std::clamp(static_cast<double>(c.occupied), 0.0, 1.0);
+    double e = std::clamp(static_cast<double>(c.empty), 0.0, 1.0);
     if (o + e > 1.0) {  // no model gives both, but masses must sum to at most one
       const double s = o + e;
       o /= s;

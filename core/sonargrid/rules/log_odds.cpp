@@ -1,5 +1,7 @@
 // Clamped log-odds: L ← clamp(L + logit(p) − logit(prior), logit(clamp_min), logit(clamp_max))
-// (Thrun, Burgard & Fox 2005 §9.2; the clamping thresholds are OctoMap's defaults).
+// (Thrun, Burgard & Fox 2005 §9.2; the clamping thresholds are OctoMap's defaults). The layer holds
+// the odds exp(L): adding logits is multiplying odds and the clamp is monotonic, so it is the same
+// rule with a division per cell where the log form needs a logarithm.
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +10,7 @@
 
 namespace sg {
 namespace {
-double logit(double p) { return std::log(p / (1.0 - p)); }
+double odds(double p) { return p / (1.0 - p); }
 // Keeps a model's 0 or 1 from becoming an infinite step; the clamp bounds the layer anyway.
 constexpr double kProbabilityFloor = 1e-6;
 }  // namespace
@@ -30,21 +32,24 @@ const RuleInfo& LogOddsRule::staticInfo() {
 }
 
 void LogOddsRule::configure(const ParameterSet& p) {
-  priorLogOdds_ = logit(p.get("prior"));
-  minLogOdds_ = logit(p.get("clamp_min"));
-  maxLogOdds_ = logit(p.get("clamp_max"));
+  priorOdds_ = odds(p.get("prior"));
+  minOdds_ = odds(p.get("clamp_min"));
+  maxOdds_ = odds(p.get("clamp_max"));
 }
 
-void LogOddsRule::reset(std::size_t cells) { logOdds_.assign(cells, priorLogOdds_); }
+void LogOddsRule::reset(std::size_t cells) { odds_.assign(cells, priorOdds_); }
 
 void LogOddsRule::apply(const Footprint& fp) {
+  const double invPrior = 1.0 / priorOdds_;
   for (const CellEvidence& c : fp.cells) {
-    const double p = std::clamp(c.probability, kProbabilityFloor, 1.0 - kProbabilityFloor);
-    double& l = logOdds_[c.cell];
-    l = std::clamp(l + logit(p) - priorLogOdds_, minLogOdds_, maxLogOdds_);
+    const double p = std::clamp(static_cast<double>(c.probability), kProbabilityFloor, 1.0 - kProbabilityFloor);
+    double& o = odds_[c.cell];
+    o = std::clamp(o * odds(p) * invPrior, minOdds_, maxOdds_);
   }
 }
 
-double LogOddsRule::occupancy(std::size_t i) const { return 1.0 / (1.0 + std::exp(-logOdds_[i])); }
+double LogOddsRule::native(std::size_t i) const { return std::log(odds_[i]); }
+
+double LogOddsRule::occupancy(std::size_t i) const { return odds_[i] / (1.0 + odds_[i]); }
 
 }  // namespace sg

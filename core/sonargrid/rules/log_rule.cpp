@@ -1,7 +1,10 @@
 // Paper 001 §3.3: Emp ← Emp·(1 − pE), Occ ← Occ·(1 + pO), both from 1, combined "using logarithms
 // and addition". The transcription prints log10(Emp) * log10(Occ), which is ≤ 0 whatever the
-// evidence; the notes fix it as Map = log10(Emp) + log10(Occ), cut to [−2, +2]. Keeping the two
-// layers as sums of logs is the same quantity without underflow after thousands of readings.
+// evidence; the notes fix it as Map = log10(Emp) + log10(Occ), cut to [−2, +2].
+// Only the sum is ever read, and it is log10(Emp·Occ), so one layer holds the product Emp·Occ and a
+// reading multiplies it by (1 − pE)(1 + pO): one multiplication per cell instead of a logarithm.
+// The product is held within [1e-300, 1e300] so it never under- or overflows; that bound is 298
+// decades beyond the cut-offs. pE = 1 still makes it 0 for good, as the paper's product does.
 
 #include <algorithm>
 #include <cmath>
@@ -30,20 +33,19 @@ void LogRule::configure(const ParameterSet& p) {
   cutMax_ = p.get("cut_max");
 }
 
-void LogRule::reset(std::size_t cells) {
-  logEmp_.assign(cells, 0.0);
-  logOcc_.assign(cells, 0.0);
-}
+void LogRule::reset(std::size_t cells) { product_.assign(cells, 1.0); }
 
 void LogRule::apply(const Footprint& fp) {
+  constexpr double kLow = 1e-300, kHigh = 1e300;
   for (const CellEvidence& c : fp.cells) {
-    // pE = 1 makes Emp 0 (−∞ in logs) for good, exactly as the product form would.
-    if (c.empty > 0.0) logEmp_[c.cell] += std::log10(1.0 - c.empty);
-    if (c.occupied > 0.0) logOcc_[c.cell] += std::log10(1.0 + c.occupied);
+    double& m = product_[c.cell];
+    m *= (1.0 - static_cast<double>(c.empty)) * (1.0 + static_cast<double>(c.occupied));
+    if (m > kHigh) m = kHigh;
+    else if (m < kLow && m > 0.0) m = kLow;
   }
 }
 
-double LogRule::native(std::size_t i) const { return std::clamp(logEmp_[i] + logOcc_[i], cutMin_, cutMax_); }
+double LogRule::native(std::size_t i) const { return std::clamp(std::log10(product_[i]), cutMin_, cutMax_); }
 
 double LogRule::occupancy(std::size_t i) const {
   // Piecewise linear in the cut value: cut_min ↦ 0, 0 (no net evidence) ↦ 0.5, cut_max ↦ 1.

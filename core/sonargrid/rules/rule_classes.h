@@ -61,7 +61,7 @@ class LogRule final : public UpdateRule {
 
  private:
   double cutMin_ = -2.0, cutMax_ = 2.0;
-  std::vector<double> logEmp_, logOcc_;  // log10 Emp, log10 Occ
+  std::vector<double> product_;  // Emp · Occ; the map value is its log10
 };
 
 // Clamped log-odds (Thrun; OctoMap's AbstractOccupancyOcTree).
@@ -73,12 +73,12 @@ class LogOddsRule final : public UpdateRule {
   void reset(std::size_t cells) override;
   void apply(const Footprint& footprint) override;
   double occupancy(std::size_t cell) const override;
-  double native(std::size_t cell) const override { return logOdds_[cell]; }
-  bool filled(std::size_t cell) const override { return logOdds_[cell] > 0.0; }
+  double native(std::size_t cell) const override;
+  bool filled(std::size_t cell) const override { return odds_[cell] > 1.0; }
 
  private:
-  double priorLogOdds_ = 0.0, minLogOdds_ = 0.0, maxLogOdds_ = 0.0;
-  std::vector<double> logOdds_;
+  double priorOdds_ = 1.0, minOdds_ = 0.0, maxOdds_ = 0.0;
+  std::vector<double> odds_;  // exp(L): clamping odds is clamping log-odds, without a log per cell
 };
 
 // HIMM's histogram (paper 000 §2.2): integer certainty values.
