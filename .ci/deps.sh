@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages SonarGrid builds and tests with, and only those that are missing.
+# Every dependency of the project is listed here and nowhere else.
+set -euo pipefail
+
+packages=(
+  g++ cmake ninja-build                     # toolchain
+  qt6-base-dev                              # Qt 6 Core/Gui/Widgets/Test/OpenGL
+  libeigen3-dev                             # poses and geometry
+  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev  # distance transform, PNG
+  nlohmann-json3-dev                        # JSON for the CLI and reference maps
+  libbenchmark-dev                          # Google Benchmark (tests/bench)
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then
+  exit 0
+fi
+echo "Installing: ${missing[*]}"
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
