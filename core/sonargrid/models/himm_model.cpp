@@ -18,9 +18,9 @@ const ModelInfo& HimmModel::staticInfo() {
       "paper 000 §2.2",
       {
           {"p_hit", "p_hit", "", 0.5, 1.0, 0.7, "OctoMap default (AbstractOccupancyOcTree: hit 0.7)",
-           "P(occ | reading) of the echo cell, for the probabilistic rules."},
+           "P(occ | reading) of the echo cell for the probabilistic rules; the himm rule only needs it above 0.5."},
           {"p_miss", "p_miss", "", 0.0, 0.5, 0.4, "OctoMap default (AbstractOccupancyOcTree: miss 0.4)",
-           "P(occ | reading) of the axis cells before the echo, for the probabilistic rules."},
+           "P(occ | reading) of the axis cells before the echo; the himm rule only needs it below 0.5."},
           noEchoParameter("free evidence on every axis cell up to the maximum range"),
       }};
   return info;

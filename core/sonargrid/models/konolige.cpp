@@ -21,7 +21,9 @@ namespace sg {
 namespace {
 
 constexpr double kZMax = 8.0;      // |z| beyond which φ and Φ are 0/1 to double precision in effect
-constexpr double kZShadow = -5.0;  // cells this many deviations past D are left alone (λ = 1 − 3e-7)
+// Cells this many deviations past D are left alone. There λ − 1 = g φ(z)/(d F) − g Φ(z) is at most
+// ~2e-3 at the paper's values (docs/models.md gives the bound); nearer cells carry the evidence.
+constexpr double kZShadow = -5.0;
 
 const SampledFunction& normalPdf() {
   static const SampledFunction f(-kZMax, kZMax, 4096, [](double z) {
@@ -80,14 +82,14 @@ const ModelInfo& KonoligeModel::staticInfo() {
            "Full cone angle; the angular lobe is a Gaussian of σ = ω/2, cut at ±ω/2."},
           {"false_rate", "F", "1/m", 0.001, 1.0, 0.05, "paper 001 §2.2 (F = 0.05)",
            "Density of false returns; keeps the occupied likelihood ratio finite."},
-          {"attenuation", "a₀", "", 0.0, 1.0, 0.6, "paper 001 §2.2: a(r) = 0.6 (1 − min(1, 0.4 r))",
+          {"attenuation", "a₀", "", 0.0, 1.0, 0.6, "paper 001 §2.2: a(r) = 0.6 (1 − min(1, 0.4 r)), a₀ = 0.6",
            "Detection probability of an occupied cell at the transducer."},
-          {"attenuation_slope", "k", "1/m", 0.0, 5.0, 0.4, "paper 001 §2.2: a(r) = 0.6 (1 − min(1, 0.4 r))",
+          {"attenuation_slope", "k", "1/m", 0.0, 5.0, 0.4, "paper 001 §2.2: a(r) = 0.6 (1 − min(1, 0.4 r)), k = 0.4 /m",
            "a(r) falls to 0 at r = 1/k (2.5 m in the paper)."},
-          {"range_sd0", "d₀", "m", 0.001, 0.5, 0.01, "paper 001 §2.2: d(r) = 0.01 + 0.015 r",
+          {"range_sd0", "d₀", "m", 0.001, 0.5, 0.01, "paper 001 §2.2: d(r) = 0.01 + 0.015 r, d₀ = 0.01 m",
            "Fixed part of the range deviation (a standard deviation)."},
-          {"range_sd1", "d₁", "", 0.0, 0.5, 0.015, "paper 001 §2.2: d(r) = 0.01 + 0.015 r",
-           "Range-proportional part of the range deviation."},
+          {"range_sd1", "d₁", "m/m", 0.0, 0.5, 0.015, "paper 001 §2.2: d(r) = 0.01 + 0.015 r, d₁ = 0.015",
+           "Growth of the range standard deviation per metre of range."},
           noEchoParameter("λ = 1 − g(r, θ) over the cone up to the detection range"),
       }};
   return info;

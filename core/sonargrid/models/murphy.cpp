@@ -66,12 +66,12 @@ const ModelInfo& MurphyModel::staticInfo() {
       "paper 002 §3.1 eqs 1–4 (after Murphy 2000)",
       {
           {"max_range", "R", "m", 0.5, 20.0, 5.0, "paper 002 eqs 1, 4 (R: maximum sensing range)",
-           "The R of (R − r)/R."},
+           "R in eqs 1 and 4: the distance term (R − r)/R falls to 0 here; separate from the log's range."},
           {"beta", "β", "deg", 1.0, 45.0, 15.0, "paper 002 eqs 1, 4 (β: half the cone width)",
            "Half-width of the cone."},
           {"tolerance", "tol", "m", 0.005, 2.0, 0.10, "paper 002 §3.1 (thickness of Region I)",
            "Half-width of Region I around the reading."},
-          {"max_occupied", "Max_occ", "", 0.5, 1.0, 0.98, "paper 002 eq 1 (Max_occupied = 0.98)",
+          {"max_occupied", "Max_occ", "", 0.5, 0.999, 0.98, "paper 002 eq 1 (Max_occupied = 0.98)",
            "Ceiling of P(s|Occ); also the clamp that keeps cells from becoming absorbing."},
           noEchoParameter("Region II (free) over the cone up to min(R, maximum range)"),
       }};

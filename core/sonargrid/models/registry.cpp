@@ -9,8 +9,8 @@ ParameterSpec noEchoParameter(const std::string& freeMeaning) {
   // Default 0: a sonar that hears nothing has most often been reflected away by a surface seen at a
   // glancing angle (paper 000 §1, "specular reflections"), and clearing its whole cone erases the
   // very walls it missed. Turn it on for diffuse surroundings.
-  return ParameterSpec{"no_echo", "no echo", "", 0.0, 1.0, 0.0,
-                       "notes/models-and-metrics.md (Conventions: a no-echo reading is free space or nothing)",
+  return ParameterSpec{"no_echo", "—", "", 0.0, 1.0, 0.0,
+                       "project choice; off by default because of specular reflections (paper 000 §1)",
                        "1: a reading with no echo gives " + freeMeaning + "; 0: it is skipped.", true};
 }
 

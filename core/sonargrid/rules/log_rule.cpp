@@ -20,9 +20,9 @@ const RuleInfo& LogRule::staticInfo() {
       "paper 001 §3.3; sum of logs per notes/models-and-metrics.md",
       "log10(Emp) + log10(Occ), cut to [cut_min, cut_max]",
       {
-          {"cut_min", "min", "", -10.0, -0.1, -2.0, "paper 001 §3.3 (cut-offs [−2, +2])",
+          {"cut_min", "Map_min", "", -10.0, -0.1, -2.0, "paper 001 §3.3 (cut-offs [−2, +2])",
            "Map values at or below this are certainly free."},
-          {"cut_max", "max", "", 0.1, 10.0, 2.0, "paper 001 §3.3 (cut-offs [−2, +2])",
+          {"cut_max", "Map_max", "", 0.1, 10.0, 2.0, "paper 001 §3.3 (cut-offs [−2, +2])",
            "Map values at or above this are certainly occupied."},
       }};
   return info;
