@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "sonargrid/pose.h"
@@ -17,19 +19,41 @@ namespace sg {
 // Single precision keeps a cell's entry at 16 bytes: a re-map streams ~10⁸ of them, and the
 // models are heuristics whose 7 significant digits are more than they mean. Rules accumulate in
 // double.
+// Trivially constructible, so a Footprint can be grown without writing it twice (see below).
 struct CellEvidence {
-  std::uint32_t cell = 0;  // linear index into the grid
-  float empty = 0.0f;
-  float occupied = 0.0f;
-  float probability = 0.5f;
+  std::uint32_t cell;  // linear index into the grid
+  float empty;
+  float occupied;
+  float probability;
 
   CellEvidence() = default;
   CellEvidence(std::uint32_t c, double e, double o, double p)
       : cell(c), empty(static_cast<float>(e)), occupied(static_cast<float>(o)), probability(static_cast<float>(p)) {}
 };
 
+// An allocator whose value-less construct() leaves trivially constructible elements unwritten, so
+// the rasteriser can size a footprint for a whole reading at once and fill it through a pointer.
+template <class T>
+struct UninitialisedAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UninitialisedAllocator<U>;
+  };
+  UninitialisedAllocator() = default;
+  template <class U>
+  UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
 struct Footprint {
-  std::vector<CellEvidence> cells;
+  std::vector<CellEvidence, UninitialisedAllocator<CellEvidence>> cells;
   void clear() { cells.clear(); }
 };
 

@@ -22,7 +22,11 @@ std::unique_ptr<UpdateRule> rule(const char* name, std::initializer_list<std::pa
 }
 
 // One reading's footprint: (cell, pE, pO, P).
-Footprint fp(std::initializer_list<CellEvidence> cells) { return Footprint{std::vector<CellEvidence>(cells)}; }
+Footprint fp(std::initializer_list<CellEvidence> cells) {
+  Footprint f;
+  f.cells.assign(cells.begin(), cells.end());
+  return f;
+}
 CellEvidence empty(std::uint32_t cell, double pE) { return {cell, pE, 0.0, 0.5 - pE / 2}; }
 CellEvidence occupied(std::uint32_t cell, double pO) { return {cell, 0.0, pO, 0.5 + pO / 2}; }
 CellEvidence likelihood(std::uint32_t cell, double p) {

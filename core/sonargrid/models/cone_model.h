@@ -13,13 +13,19 @@ template <class Prepared>
 void coneFootprint(const Prepared& pb, const Beam& beam, const GridSpec& grid, const BeamTables& tables,
                    Footprint& out) {
   if (!pb.active) return;
-  forEachConeCell(beam.sensor, pb.reach, pb.halfAngle, grid, tables,
-                  [&](std::uint32_t cell, double delta, double theta) {
-                    const ModelValue v = pb.at(delta, theta);
-                    if (v.region != BeamRegion::Outside) {
-                      out.cells.push_back(CellEvidence{cell, v.empty, v.occupied, v.probability});
-                    }
-                  });
+  const std::size_t start = out.cells.size();
+  CellEvidence* dst = nullptr;
+  forEachConeCell(
+      beam.sensor, pb.reach, pb.halfAngle, grid, tables,
+      [&](std::size_t bound) {
+        out.cells.resize(start + bound);  // leaves the new entries unwritten (UninitialisedAllocator)
+        dst = out.cells.data() + start;
+      },
+      [&](std::uint32_t cell, double delta, double theta) {
+        const ModelValue v = pb.at(delta, theta);
+        if (v.region != BeamRegion::Outside) *dst++ = CellEvidence{cell, v.empty, v.occupied, v.probability};
+      });
+  out.cells.resize(dst ? static_cast<std::size_t>(dst - out.cells.data()) : start);
 }
 
 // p = 0.5 + (pO - pE) / 2 and back: the translation paper 001 §3.2 uses between evidence and a

@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include "sonargrid/beam_tables.h"
 #include "sonargrid/grid_spec.h"
@@ -28,12 +30,19 @@ inline void clip(double a, double b, double& lo, double& hi) {
 
 }  // namespace detail
 
+// The per-row spans of one cone, found before any cell is visited so that the caller can size its
+// output once. Reused per thread.
+struct ConeSpan {
+  int dy, dx0, dx1;
+};
+
 // fn(std::uint32_t cell, double delta, double theta) for every cell whose centre is within
 // `reach` metres of the sensor and within `halfAngle` radians of its axis (halfAngle < 90°).
 // Cells are visited row by row from the lowest world y, each row from the lowest x: a fixed order.
-template <class Fn>
+// Before the first call, reserve(bound) is told how many calls there can be at most.
+template <class Reserve, class Fn>
 void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const GridSpec& grid,
-                     const BeamTables& tables, Fn&& fn) {
+                     const BeamTables& tables, Reserve&& reserve, Fn&& fn) {
   const double c = grid.cellSize;
   const double u = (sensor.x() - grid.origin.x()) / c;
   const double v = (sensor.y() - grid.origin.y()) / c;
@@ -59,10 +68,9 @@ void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const
   const int r = tables.radius();
   const int dy0 = std::max({-r, static_cast<int>(std::floor(ay - 0.5 - R)) - 1, -iv});
   const int dy1 = std::min({r, static_cast<int>(std::ceil(ay - 0.5 + R)) + 1, grid.height - 1 - iv});
-  const BeamTables::Entry* t = tables.table(qx, qy);
-  const int side = tables.side();
-  const float reachF = static_cast<float>(reach);
-  constexpr double kPi = std::numbers::pi;
+  thread_local std::vector<ConeSpan> spans;
+  spans.clear();
+  std::size_t bound = 0;
   for (int dy = dy0; dy <= dy1; ++dy) {
     const double y = dy + 0.5 - ay;  // row of cell centres, relative to the apex
     const double disk = (R + kSlack) * (R + kSlack) - y * y;
@@ -78,9 +86,19 @@ void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const
     const int dx0 = std::max({-r, static_cast<int>(std::ceil(lo - 0.5 + ax)), -iu});
     const int dx1 = std::min({r, static_cast<int>(std::floor(hi - 0.5 + ax)), grid.width - 1 - iu});
     if (dx0 > dx1) continue;
-    const BeamTables::Entry* row = t + (dy + r) * side + r;
-    const std::uint32_t rowBase = static_cast<std::uint32_t>((iv + dy) * grid.width + iu);
-    for (int dx = dx0; dx <= dx1; ++dx) {
+    spans.push_back(ConeSpan{dy, dx0, dx1});
+    bound += static_cast<std::size_t>(dx1 - dx0 + 1);
+  }
+  reserve(bound);
+
+  const BeamTables::Entry* t = tables.table(qx, qy);
+  const int side = tables.side();
+  const float reachF = static_cast<float>(reach);
+  constexpr double kPi = std::numbers::pi;
+  for (const ConeSpan& span : spans) {
+    const BeamTables::Entry* row = t + (span.dy + r) * side + r;
+    const std::uint32_t rowBase = static_cast<std::uint32_t>((iv + span.dy) * grid.width + iu);
+    for (int dx = span.dx0; dx <= span.dx1; ++dx) {
       const BeamTables::Entry e = row[dx];
       if (e.distance > reachF) continue;
       double theta = static_cast<double>(e.bearing) - h;
@@ -90,6 +108,13 @@ void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const
       fn(rowBase + static_cast<std::uint32_t>(dx), static_cast<double>(e.distance), theta);
     }
   }
+}
+
+// Without a bound: for callers that only count or collect cells.
+template <class Fn>
+void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const GridSpec& grid,
+                     const BeamTables& tables, Fn&& fn) {
+  forEachConeCell(sensor, reach, halfAngle, grid, tables, [](std::size_t) {}, std::forward<Fn>(fn));
 }
 
 }  // namespace sg
