@@ -1,5 +1,6 @@
 #include "arguments.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -17,13 +18,12 @@ double parseNumber(const std::string& text, const std::string& what) {
 }
 
 bool Arguments::flag(const std::string& name) {
-  for (auto it = args_.begin(); it != args_.end(); ++it) {
-    if (*it == name) {
-      args_.erase(it);
-      return true;
-    }
-  }
-  return false;
+  const auto n = std::count(args_.begin(), args_.end(), name);
+  if (n > 1) throw UsageError(name + " is given " + std::to_string(n) + " times");
+  const auto it = std::find(args_.begin(), args_.end(), name);
+  if (it == args_.end()) return false;
+  args_.erase(it);
+  return true;
 }
 
 std::optional<std::string> Arguments::value(const std::string& name) {
@@ -64,6 +64,19 @@ double Arguments::number(const std::string& name, double fallback, double min, d
     std::ostringstream msg;
     msg << name << " must be between " << min << " and " << max << ", got " << *v;
     throw UsageError(msg.str());
+  }
+  return x;
+}
+
+int Arguments::integer(const std::string& name, int fallback, int min, int max) {
+  auto v = value(name);
+  if (!v) return fallback;
+  int x = 0;
+  const char* end = v->data() + v->size();
+  const auto [ptr, ec] = std::from_chars(v->data(), end, x);
+  if (ec != std::errc() || ptr != end) throw UsageError(name + " expects a whole number, got '" + *v + "'");
+  if (x < min || x > max) {
+    throw UsageError(name + " must be between " + std::to_string(min) + " and " + std::to_string(max) + ", got " + *v);
   }
   return x;
 }

@@ -32,6 +32,7 @@ class Arguments {
   std::vector<std::string> values(const std::string& name);
   std::string required(const std::string& name);
   double number(const std::string& name, double fallback, double min, double max);
+  int integer(const std::string& name, int fallback, int min, int max);
   // Throws naming the first argument nobody consumed.
   void finish() const;
 

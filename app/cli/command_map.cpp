@@ -1,7 +1,9 @@
 // `sonargrid-cli map`: map a log with one model and rule, print a summary (or --json), export PNG
 // and ROS maps.
 
+#include <algorithm>
 #include <chrono>
+#include <sstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -43,10 +45,13 @@ MapOptions parseMapOptions(Arguments& args) {
     throw InputError("model '" + o.settings.model + "' cannot be used with rule '" + o.settings.rule + "': " + c.reason);
   }
   o.settings.parameters = defaultParameters(o.settings.model, o.settings.rule);
+  std::vector<std::string> seen;
   for (const std::string& kv : args.values("--set")) {
     const auto eq = kv.find('=');
     if (eq == std::string::npos || eq == 0) throw UsageError("--set expects NAME=VALUE, got '" + kv + "'");
     const std::string name = kv.substr(0, eq);
+    if (std::find(seen.begin(), seen.end(), name) != seen.end()) throw UsageError("--set " + name + " is given twice");
+    seen.push_back(name);
     try {
       o.settings.parameters.set(name, parseNumber(kv.substr(eq + 1), "--set " + name));
     } catch (const ParameterError& e) {
@@ -70,8 +75,10 @@ BuiltMap buildMap(const Dataset& data, const MapOptions& o) {
   }
   const GridSpec grid = data.fittingGrid(o.settings.pose, o.cell);
   if (static_cast<double>(grid.width) * grid.height > kMaxCells) {
-    throw UsageError("--cell " + std::to_string(o.cell) + " makes a grid of " + std::to_string(grid.width) + " x " +
-                     std::to_string(grid.height) + " cells; choose a larger cell");
+    std::ostringstream msg;
+    msg << "--cell " << o.cell << " makes a grid of " << grid.width << " x " << grid.height
+        << " cells; choose a larger cell";
+    throw UsageError(msg.str());
   }
   BuiltMap out;
   try {
@@ -91,10 +98,11 @@ int runMap(Arguments& args) {
   const MapOptions o = parseMapOptions(args);
   const auto png = args.value("--png");
   const bool legend = args.flag("--legend");
-  const int scale = static_cast<int>(args.number("--scale", 1, 1, 64));
+  const int scale = args.integer("--scale", 1, 1, 64);
   const auto ros = args.value("--ros-map");
   const bool json = args.flag("--json");
   args.finish();
+  if (!png && (legend || scale != 1)) throw UsageError("--legend and --scale shape the PNG; give --png FILE");
 
   const Dataset data = loadLog(o.log);
   const BuiltMap built = buildMap(data, o);

@@ -24,7 +24,9 @@ nlohmann::ordered_json parametersJson(const std::vector<ParameterSpec>& specs) {
                     {"min", s.min},
                     {"max", s.max},
                     {"default", s.defaultValue},
-                    {"source", s.source}});
+                    {"source", s.source},
+                    {"integer", s.integer},
+                    {"description", s.description}});
   }
   return list;
 }

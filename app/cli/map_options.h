@@ -19,8 +19,8 @@ struct MapOptions {
   double until = std::numeric_limits<double>::infinity();
 };
 
-// Consumes the map flags; throws UsageError for bad or missing ones and InputError for an unknown
-// or incompatible model/rule or a bad --set.
+// Consumes the map flags; throws UsageError for bad, missing or unknown ones (model, rule, --set)
+// and InputError for an incompatible model/rule pair.
 MapOptions parseMapOptions(Arguments& args);
 
 // Reads the log (InputError naming file, line and field when it is malformed).
