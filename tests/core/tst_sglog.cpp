@@ -99,6 +99,9 @@ class TstSglog : public QObject {
   void parseAccepted();
   void malformed_data();
   void malformed();
+  void endRecord_data();
+  void endRecord();
+  void everyCutIsDetected();
   void writerRejects_data();
   void writerRejects();
   void readFixture();
@@ -251,13 +254,15 @@ void TstSglog::writerOutput() {
       "scan 0.25 1 -2 0.5 none\n"
       "r 0 1.5 0.25\n"
       "r 0 none 0.3\n"
-      "scan 1 0 0 0 0.1 0.2 -3\n";
+      "scan 1 0 0 0 0.1 0.2 -3\n"
+      "end\n";
   QCOMPARE(writeToString(d), expected);
 }
 
 void TstSglog::rangeAtMaxIsNoEcho() {
   // docs/formats.md, "No echo": finite ranges at or beyond max_range (4 here) read as kNoEcho.
-  const sg::Dataset d = parseText(kHeader + "scan 0 0 0 0 none\nr 0 4 0\nr 1 1e6 0\nr 0 3.999 0\n");
+  const sg::Dataset d =
+      parseText(kHeader + "scan 0 0 0 0 none\nr 0 4 0\nr 1 1e6 0\nr 0 3.999 0\nend\n");
   QCOMPARE(d.scans.at(0).readings.size(), std::size_t{3});
   QVERIFY(!d.scans[0].readings[0].echo());
   QVERIFY(!d.scans[0].readings[1].echo());
@@ -275,7 +280,8 @@ void TstSglog::rangeAtMaxIsNoEcho() {
 
 void TstSglog::parseAccepted() {
   // Everything docs/formats.md allows but the writer never produces: BOM, CRLF, comments and
-  // blank lines everywhere, tabs, header records out of order, number spellings, no final LF.
+  // blank lines everywhere (after 'end' too), tabs, header records out of order, number
+  // spellings, no final LF.
   const QByteArray text =
       "\xEF\xBB\xBFsglog 1   # first line\r\n"
       "# comment\n"
@@ -294,7 +300,11 @@ void TstSglog::parseAccepted() {
       "r 1 none -2\n"
       "r 0 0.05 -1.5\n"
       "scan -2 0 0 0 4 5 6\n"
-      "r\t1\t2.5\t7";
+      "r\t1\t2.5\t7\n"
+      "\t end\t# closing record, indented\r\n"
+      "\n"
+      "# only comments and blank lines after it\n"
+      "   # no final LF";
   sg::Dataset expected;
   expected.name = "Room #1 \t\\";  // \x6F is 'o'
   expected.ring = smallRing();
@@ -491,13 +501,13 @@ void TstSglog::malformed_data() {
       << QByteArray("t.sglog:10: theta: expected an angle in radians, found '1e400'");
   QTest::addRow("unknown body record")
       << kHeader + "odom 1 2 3\n"
-      << QByteArray("t.sglog:10: expected a body record ('scan' or 'r'), found 'odom'");
+      << QByteArray("t.sglog:10: expected a body record ('scan', 'r' or 'end'), found 'odom'");
   QTest::addRow("header record in body")
       << kHeader + "sonar 2 0 0 0\n"
-      << QByteArray("t.sglog:10: expected a body record ('scan' or 'r'), found 'sonar'");
+      << QByteArray("t.sglog:10: expected a body record ('scan', 'r' or 'end'), found 'sonar'");
   QTest::addRow("long token shortened")
       << kHeader + QByteArray(50, 'k') + "\n"
-      << QByteArray("t.sglog:10: expected a body record ('scan' or 'r'), found '" +
+      << QByteArray("t.sglog:10: expected a body record ('scan', 'r' or 'end'), found '" +
                     QByteArray(40, 'k') + "...'");
   // Columns count bytes from 1: "scan 0" is columns 1-6.
   QTest::addRow("NUL byte") << kHeader + QByteArray("scan 0\0 0 0 0 none\n", 19)
@@ -512,12 +522,119 @@ void TstSglog::malformed_data() {
   QTest::addRow("line too long")
       << kHeader + "# " + QByteArray(70000, 'x') + "\nscan 0 0 0 0 none\n"
       << QByteArray("t.sglog:10: expected a line of at most 65536 bytes, found a longer one");
+
+  // Truncation (docs/formats.md, "Truncation"): a body cut at a line ending used to read as a
+  // valid, shorter log; without its closing 'end' line it is now reported on the file as a whole.
+  const QByteArray truncated(
+      "t.sglog: truncated: the file ends inside the body (expected a closing 'end' line)");
+  const QByteArray scan0 = "scan 0 0 0 0 none\n";  // line 10 after kHeader
+  QTest::addRow("cut after end_header") << kHeader << truncated;
+  QTest::addRow("cut after a scan line") << kHeader + scan0 << truncated;
+  QTest::addRow("cut after a reading") << kHeader + scan0 + "r 0 1 0\n" << truncated;
+  QTest::addRow("cut after the second scan's reading")
+      << kHeader + scan0 + "r 0 1 0\nr 1 none 0\nscan 1 0 0 0 0 0 0\nr 0 2 1\n"
+      << truncated;
+  // A cut inside the last line that leaves it readable ("r 0 1.25 0.06" cut to "r 0 1.25 0.0").
+  QTest::addRow("cut inside a number") << kHeader + scan0 + "r 0 1.25 0.0" << truncated;
+  QTest::addRow("cut, CRLF") << kHeader + "scan 0 0 0 0 none\r\n" << truncated;
+  QTest::addRow("cut, comments and blanks after") << kHeader + scan0 + "# more\n\n \t\n"
+                                                  << truncated;
+  QTest::addRow("end commented out") << kHeader + scan0 + "# end\n" << truncated;
+  // A cut inside 'end' itself leaves a record that is not one.
+  QTest::addRow("cut inside end")
+      << kHeader + scan0 + "en"
+      << QByteArray("t.sglog:11: expected a body record ('scan', 'r' or 'end'), found 'en'");
+  QTest::addRow("END in capitals")
+      << kHeader + "END\n"
+      << QByteArray("t.sglog:10: expected a body record ('scan', 'r' or 'end'), found 'END'");
+  QTest::addRow("end with a field")
+      << kHeader + "end now\n"
+      << QByteArray("t.sglog:10: end: expected 0 fields after 'end', found 1");
+  // Lines 10 end, 11 blank, 12 comment, 13 scan.
+  QTest::addRow("scan after end") << kHeader + "end\n\n# c\n" + scan0
+                                  << QByteArray(
+                                         "t.sglog:13: expected nothing but comments and blank "
+                                         "lines after 'end' (line 10), found 'scan'");
+  QTest::addRow("reading after end") << kHeader + scan0 + "end\nr 0 1 0\n"
+                                     << QByteArray(
+                                            "t.sglog:12: expected nothing but comments and blank "
+                                            "lines after 'end' (line 11), found 'r'");
+  QTest::addRow("second end") << kHeader + scan0 + "end\nend\n"
+                              << QByteArray(
+                                     "t.sglog:12: expected nothing but comments and blank lines "
+                                     "after 'end' (line 11), found 'end'");
+  QTest::addRow("bad byte after end")
+      << kHeader + "end\n# \xFF\n"
+      << QByteArray("t.sglog:11: expected UTF-8 text, found byte 0xff at column 3");
+  QTest::addRow("end in the header") << QByteArray("sglog 1\nend\n")
+                                     << QByteArray(
+                                            "t.sglog:2: expected a header record (name, robot, "
+                                            "aperture, min_range, max_range, sonar or "
+                                            "end_header), found 'end'");
 }
 
 void TstSglog::malformed() {
   QFETCH(QByteArray, text);
   QFETCH(QByteArray, expected);
   QCOMPARE(errorOf(text), expected);
+}
+
+void TstSglog::endRecord_data() {
+  QTest::addColumn<QByteArray>("text");
+  QTest::addColumn<int>("scans");
+  QTest::addColumn<int>("readings");
+
+  // Counts read off the text of each row.
+  QTest::addRow("no scans") << kHeader + "end\n" << 0 << 0;
+  QTest::addRow("no final LF") << kHeader + "scan 0 0 0 0 none\nr 0 1 0\nend" << 1 << 1;
+  QTest::addRow("CRLF") << kHeader + "scan 0 0 0 0 none\r\nend\r\n" << 1 << 0;
+  QTest::addRow("trailing comment") << kHeader + "scan 0 0 0 0 none\nend # done\n" << 1 << 0;
+  QTest::addRow("blanks and comments after")
+      << kHeader + "scan 0 0 0 0 none\nr 1 none 0\nr 0 2 0\nend\n\n\t\n# trailer\n  # x" << 1 << 2;
+}
+
+void TstSglog::endRecord() {
+  QFETCH(QByteArray, text);
+  QFETCH(int, scans);
+  QFETCH(int, readings);
+  const sg::Dataset d = parseText(text);
+  QCOMPARE(d.scans.size(), static_cast<std::size_t>(scans));
+  QCOMPARE(d.readingCount(), static_cast<std::size_t>(readings));
+}
+
+void TstSglog::everyCutIsDetected() {
+  // Every proper prefix of a written log is refused, except the one that only drops the final LF
+  // (the last line may lack its line ending); a prefix that ends at a line ending inside the body
+  // is refused as truncated, on the file as a whole (line 0).
+  sg::Dataset d;
+  d.name = "cut";
+  d.ring = smallRing();
+  d.scans.push_back(makeScan(0, sg::Pose2D(0, 0, 0), std::nullopt, {{0, 1.5, 0}, {1, kInf, 0.01}}));
+  d.scans.push_back(makeScan(0.1, sg::Pose2D(0.1, 0, 0), sg::Pose2D(0.1, 0.01, 0), {}));
+  d.scans.push_back(makeScan(0.2, sg::Pose2D(0.2, 0, 0.1), std::nullopt, {{1, 2.25, 0.2}}));
+  const QByteArray text = QByteArray::fromStdString(writeToString(d));
+  QVERIFY(text.endsWith("\nr 1 2.25 0.2\nend\n"));
+  const qsizetype bodyStart = text.indexOf("end_header\n") + 11;
+  const qsizetype endStart = text.size() - 4;  // "end\n"
+
+  QCOMPARE(parseText(text.left(text.size() - 1)), d);
+  int atLineEnding = 0;
+  for (qsizetype n = 0; n < text.size() - 1; ++n) {
+    const QByteArray cut = text.left(n);
+    try {
+      parseText(cut);
+      QFAIL(qPrintable(QString("a log cut after %1 bytes was accepted").arg(n)));
+    } catch (const sg::LogError& e) {
+      if (n >= bodyStart && n <= endStart && text[n - 1] == '\n') {
+        ++atLineEnding;
+        QCOMPARE(e.line(), std::size_t{0});
+        QCOMPARE(QByteArray(e.what()),
+                 QByteArray("t.sglog: truncated: the file ends inside the body (expected a "
+                            "closing 'end' line)"));
+      }
+    }
+  }
+  QCOMPARE(atLineEnding, 7);  // after end_header, 3 scan lines and 3 reading lines
 }
 
 void TstSglog::writerRejects_data() {

@@ -39,6 +39,9 @@ constexpr std::string_view kNone = "none";
 constexpr std::string_view kEndHeader = "end_header";
 constexpr std::string_view kScan = "scan";
 constexpr std::string_view kReading = "r";
+// The closing record: a log cut short exactly at a line ending would otherwise read as a valid,
+// shorter log.
+constexpr std::string_view kEnd = "end";
 
 std::string osReason(int err) {
   return std::error_code(err, std::generic_category()).message();
@@ -626,9 +629,25 @@ class Parser {
         scan.odometry = Pose2D(x, y, theta);
         scan.truth = truth;
         scan.readings.reserve(readingsPerScan_);
+      } else if (key == kEnd) {
+        expectCount(0, "");
+        readTrailer();
+        return;
       } else {
-        fail("", "expected a body record ('scan' or 'r'), " + found(key));
+        fail("", "expected a body record ('scan', 'r' or 'end'), " + found(key));
       }
+    }
+    throw LogError(file_, 0, "",
+                   "truncated: the file ends inside the body (expected a closing 'end' line)");
+  }
+
+  // After 'end' only comments and blank lines may follow.
+  void readTrailer() {
+    const std::size_t endLine = lines_.lineNumber();
+    while (nextLine()) {
+      if (fields_.count == 0) continue;
+      fail("", "expected nothing but comments and blank lines after 'end' (line " +
+                   std::to_string(endLine) + "), " + found(fields_[0]));
     }
   }
 
@@ -835,6 +854,8 @@ void writeText(const Dataset& d, ByteSink& sink) {
       w.endLine();
     }
   }
+  w << kEnd;
+  w.endLine();
   w.flush();
 }
 
