@@ -35,7 +35,7 @@ BeamTables::BeamTables(double cellSize, int radiusCells, int subdivisions)
 std::shared_ptr<const BeamTables> BeamTables::shared(double cellSize, double reach) {
   static std::mutex mutex;
   // Strong references: a re-map after every slider move must not rebuild the tables. A handful of
-  // cell sizes is all a session uses; the oldest entries go beyond that.
+  // cell sizes is all a session uses; beyond that the entry with the smallest key goes.
   static std::map<std::pair<double, int>, std::shared_ptr<const BeamTables>> cache;
   constexpr std::size_t kMaxEntries = 4;
   // Two cells of slack: the sensor may sit anywhere in its cell and cells are judged by centre.

@@ -1,6 +1,7 @@
 #include "sonargrid/dataset.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace sg {
@@ -27,9 +28,11 @@ GridSpec Dataset::fittingGrid(PoseSource source, double cellSize, double margin)
       lo = lo.cwiseMin(sensor.position);
       hi = hi.cwiseMax(sensor.position);
       if (r.echo() && r.range < ring.maxRange) {
-        const Position end = sensor.transform(Position(r.range, 0.0));
-        lo = lo.cwiseMin(end);
-        hi = hi.cwiseMax(end);
+        for (const double a : {0.0, -ring.apertureRad / 2, ring.apertureRad / 2}) {
+          const Position end = sensor.transform(Position(r.range * std::cos(a), r.range * std::sin(a)));
+          lo = lo.cwiseMin(end);
+          hi = hi.cwiseMax(end);
+        }
         anyEcho = true;
       }
     }

@@ -49,10 +49,10 @@ struct Dataset {
   const Pose2D& pose(const Scan& s, PoseSource source) const {
     return source == PoseSource::Truth && s.truth ? *s.truth : s.odometry;
   }
-  // The grid of `cellSize` that holds every sonar position and every echo (the point at the
-  // reading's range on the acoustic axis), grown by `margin` metres on each side for the cones'
-  // width. A log without a single echo gets the sonar positions grown by the maximum range.
-  GridSpec fittingGrid(PoseSource source, double cellSize, double margin = 1.0) const;
+  // The grid of `cellSize` that holds every robot and sonar position and every echo (the points at
+  // the reading's range on the acoustic axis and on both cone edges), grown by `margin` metres.
+  // A log without a single echo gets the positions grown by the maximum range.
+  GridSpec fittingGrid(PoseSource source, double cellSize, double margin = 0.5) const;
 
   bool operator==(const Dataset&) const = default;
 };

@@ -40,6 +40,8 @@ double ParameterSet::get(const std::string& name) const {
 void ParameterSet::append(const ParameterSet& other) {
   for (const ParameterSpec& s : other.specs_) {
     if (has(s.name)) throw ParameterError("parameter '" + s.name + "' is declared twice");
+  }
+  for (const ParameterSpec& s : other.specs_) {
     specs_.push_back(s);
     values_[s.name] = other.get(s.name);
   }

@@ -57,7 +57,8 @@ void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const
   const double ax = (qx + 0.5) / q;
   const double ay = (qy + 0.5) / q;
 
-  const double h = sensor.heading;
+  // The per-cell angle test corrects by 2π once, so the heading itself must be in [-π, π).
+  const double h = wrapAngle(sensor.heading);
   const double R = reach / c;
   const double d1x = std::cos(h - halfAngle), d1y = std::sin(h - halfAngle);  // right edge
   const double d2x = std::cos(h + halfAngle), d2y = std::sin(h + halfAngle);  // left edge
@@ -68,6 +69,7 @@ void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const
   const int r = tables.radius();
   const int dy0 = std::max({-r, static_cast<int>(std::floor(ay - 0.5 - R)) - 1, -iv});
   const int dy1 = std::min({r, static_cast<int>(std::ceil(ay - 0.5 + R)) + 1, grid.height - 1 - iv});
+  // Per thread, so workers never share it; fn must not call forEachConeCell itself.
   thread_local std::vector<ConeSpan> spans;
   spans.clear();
   std::size_t bound = 0;
