@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 
+#include "sonargrid/io/sglog.h"
 #include "sonargrid/mapper.h"
 
 using namespace sg;
@@ -66,6 +67,10 @@ class TstMapper : public QObject {
  private slots:
   void batchEqualsIncremental_data();
   void batchEqualsIncremental();
+  void parallelBatchEqualsIncremental_data();
+  void parallelBatchEqualsIncremental();
+  void parallelIsRepeatable();
+  void cancelMidRun();
   void untilIsAPrefix();
   void deterministic();
   void poseSource();
@@ -106,6 +111,80 @@ void TstMapper::batchEqualsIncremental() {
   for (const Scan& scan : d.scans) incrementalFree.integrate(scan);
   QVERIFY(sameLayers(batchFree.snapshot(), incrementalFree.snapshot()));
   QVERIFY(!sameLayers(batchFree.snapshot(), batch.snapshot()));
+}
+
+// The bundled room log has 11 888 readings, above the mapper's threshold for working on several
+// threads (4096): these rows exercise the banded pipeline.
+const Dataset& room() {
+  static const Dataset d = readSglog(SONARGRID_DATASETS "/room/room.sglog");
+  return d;
+}
+
+void TstMapper::parallelBatchEqualsIncremental_data() { batchEqualsIncremental_data(); }
+
+void TstMapper::parallelBatchEqualsIncremental() {
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  const Dataset& d = room();
+  QVERIFY(d.readingCount() > 4096);
+  MapperSettings s;
+  s.model = model.toStdString();
+  s.rule = rule.toStdString();
+  s.pose = PoseSource::Truth;
+  const GridSpec grid = d.fittingGrid(PoseSource::Truth, 0.05);
+  Mapper batch(d.ring, grid, s);
+  QVERIFY(batch.mapDataset(d));
+  Mapper incremental(d.ring, grid, s);
+  for (const Scan& scan : d.scans) incremental.integrate(scan);
+  QCOMPARE(batch.readingsIntegrated(), d.readingCount());
+  QVERIFY(sameLayers(batch.snapshot(), incremental.snapshot()));
+}
+
+void TstMapper::parallelIsRepeatable() {
+  // Thread timing differs run to run; the grid must not.
+  const Dataset& d = room();
+  MapperSettings s;
+  s.model = "konolige";
+  s.rule = "dempster-shafer";
+  const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
+  Mapper m(d.ring, grid, s);
+  m.mapDataset(d);
+  const OccupancyMap first = m.snapshot();
+  for (int k = 0; k < 5; ++k) {
+    m.mapDataset(d);
+    QVERIFY(sameLayers(first, m.snapshot()));
+  }
+}
+
+void TstMapper::cancelMidRun() {
+  // An observer raises the flag after 3000 readings; the batch stops at its next check (every 256
+  // readings), reports it, and the same mapper then maps the whole log exactly as a fresh one.
+  struct Canceller final : FootprintObserver {
+    std::atomic<bool>* flag = nullptr;
+    std::size_t seen = 0;
+    void reset(std::size_t) override { seen = 0; }
+    void observe(const Footprint&) override {
+      if (++seen == 3000) flag->store(true);
+    }
+  };
+  const Dataset& d = room();
+  MapperSettings s;
+  s.model = "hpf";
+  s.rule = "bayes";
+  const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
+  std::atomic<bool> stop{false};
+  Canceller canceller;
+  canceller.flag = &stop;
+  Mapper m(d.ring, grid, s);
+  m.setObserver(&canceller);
+  QVERIFY(!m.mapDataset(d, std::numeric_limits<double>::infinity(), &stop));
+  QVERIFY(m.readingsIntegrated() >= 3000 && m.readingsIntegrated() < 3000 + 256 + 1);
+  m.setObserver(nullptr);
+  stop.store(false);
+  QVERIFY(m.mapDataset(d, std::numeric_limits<double>::infinity(), &stop));
+  Mapper fresh(d.ring, grid, s);
+  fresh.mapDataset(d);
+  QVERIFY(sameLayers(m.snapshot(), fresh.snapshot()));
 }
 
 void TstMapper::untilIsAPrefix() {

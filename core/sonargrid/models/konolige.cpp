@@ -11,6 +11,8 @@
 // λ → 1 (nothing). A no-echo reading gives λ = 1 − g over the whole cone: the occupied cell would
 // have been heard with probability g.
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -20,21 +22,51 @@
 namespace sg {
 namespace {
 
-constexpr double kZMax = 8.0;      // |z| beyond which φ and Φ are 0/1 to double precision in effect
+constexpr double kZMax = 8.0;  // |z| beyond which φ and Φ are 0/1 to double precision in effect
 // Cells this many deviations past D are left alone. There λ − 1 = g φ(z)/(d F) − g Φ(z) is at most
 // ~2e-3 at the paper's values (docs/models.md gives the bound); nearer cells carry the evidence.
+// z < −5 ⟺ r > (D + 5 d₀)/(1 − 5 d₁), so the cut is the reading's reach, not a per-cell test.
 constexpr double kZShadow = -5.0;
 
-const SampledFunction& normalPdf() {
-  static const SampledFunction f(-kZMax, kZMax, 4096, [](double z) {
-    return std::exp(-0.5 * z * z) / std::sqrt(2.0 * std::numbers::pi);
-  });
-  return f;
+double shadowRange(const KonoligeModel::Settings& s, double D) {
+  return (D - kZShadow * s.sd0) / (1.0 + kZShadow * s.sd1);
 }
-const SampledFunction& normalCdf() {
-  static const SampledFunction f(-kZMax, kZMax, 4096,
-                                 [](double z) { return 0.5 * std::erfc(-z / std::numbers::sqrt2); });
-  return f;
+
+// φ(z) and Φ(z) sampled together, so one index serves both.
+class NormalTable {
+ public:
+  NormalTable() {
+    for (int i = 0; i <= kIntervals + 1; ++i) {
+      const double z = -kZMax + std::min(i, kIntervals) / kScale;
+      pdf_[static_cast<std::size_t>(i)] = std::exp(-0.5 * z * z) / std::sqrt(2.0 * std::numbers::pi);
+      cdf_[static_cast<std::size_t>(i)] = 0.5 * std::erfc(-z / std::numbers::sqrt2);
+    }
+  }
+  // Linear interpolation; z is at least kZShadow here, and above kZMax both are flat.
+  void operator()(double z, double& pdf, double& cdf) const {
+    const double t = (std::min(z, kZMax) + kZMax) * kScale;
+    const std::size_t k = static_cast<std::size_t>(t);
+    const double w = t - static_cast<double>(k);
+    pdf = pdf_[k] + w * (pdf_[k + 1] - pdf_[k]);
+    cdf = cdf_[k] + w * (cdf_[k + 1] - cdf_[k]);
+  }
+
+ private:
+  static constexpr int kIntervals = 4096;
+  static constexpr double kScale = kIntervals / (2.0 * kZMax);
+  std::array<double, kIntervals + 2> pdf_{}, cdf_{};
+};
+
+const NormalTable& normalTable() {
+  static const NormalTable t;
+  return t;
+}
+
+// λ to the Footprint's three values: P = λ/(1 + λ), pO = 2P − 1 = (λ − 1)/(λ + 1), pE = −that.
+ModelValue fromLikelihoodRatio(double lambda) {
+  const double inv = 1.0 / (1.0 + lambda);
+  if (lambda > 1.0) return ModelValue{BeamRegion::Occupied, 0.0, (lambda - 1.0) * inv, lambda * inv};
+  return ModelValue{BeamRegion::Empty, (1.0 - lambda) * inv, 0.0, lambda * inv};
 }
 
 struct KonoligeBeam {
@@ -45,8 +77,7 @@ struct KonoligeBeam {
   double range = 0.0;
   const KonoligeModel::Settings* s = nullptr;
   const SampledFunction* lobe = nullptr;
-  const SampledFunction* pdf = nullptr;
-  const SampledFunction* cdf = nullptr;
+  const NormalTable* normal = nullptr;
   double invF = 0.0;
 
   ModelValue at(double r, double theta) const {
@@ -57,14 +88,14 @@ struct KonoligeBeam {
     const double g = a * (*lobe)(t);
     double lambda;
     if (echo) {
-      const double d = s->sd0 + s->sd1 * r;
-      const double z = (range - r) / d;
-      if (z < kZShadow) return {};
-      lambda = g * (*pdf)(z) * invF / d + 1.0 - g * (*cdf)(z);
+      const double invD = 1.0 / (s->sd0 + s->sd1 * r);
+      double pdf, cdf;
+      (*normal)((range - r) * invD, pdf, cdf);
+      lambda = g * pdf * invF * invD + 1.0 - g * cdf;
     } else {
       lambda = 1.0 - g;
     }
-    return fromProbability(lambda / (1.0 + lambda));
+    return fromLikelihoodRatio(lambda);
   }
 };
 
@@ -88,7 +119,7 @@ const ModelInfo& KonoligeModel::staticInfo() {
            "a(r) falls to 0 at r = 1/k (2.5 m in the paper)."},
           {"range_sd0", "d₀", "m", 0.001, 0.5, 0.01, "paper 001 §2.2: d(r) = 0.01 + 0.015 r, d₀ = 0.01 m",
            "Fixed part of the range deviation (a standard deviation)."},
-          {"range_sd1", "d₁", "m/m", 0.0, 0.5, 0.015, "paper 001 §2.2: d(r) = 0.01 + 0.015 r, d₁ = 0.015",
+          {"range_sd1", "d₁", "m/m", 0.0, 0.19, 0.015, "paper 001 §2.2: d(r) = 0.01 + 0.015 r, d₁ = 0.015",
            "Growth of the range standard deviation per metre of range."},
           noEchoParameter("λ = 1 − g(r, θ) over the cone up to the detection range"),
       }};
@@ -116,14 +147,13 @@ KonoligeBeam prepareKonolige(const KonoligeModel::Settings& s, const SampledFunc
   b.active = true;
   b.s = &s;
   b.lobe = &lobe;
-  b.pdf = &normalPdf();
-  b.cdf = &normalCdf();
+  b.normal = &normalTable();
   b.invF = 1.0 / s.falseRate;
   b.halfAngle = s.omega / 2.0;
   b.range = b.echo ? range : maxRange;
-  // Beyond D + 5 d(D) (or the maximum range without an echo) and beyond the detection range 1/k
-  // the ratio is 1: no cell there needs visiting.
-  double reach = b.echo ? range - kZShadow * (s.sd0 + s.sd1 * range) : maxRange;
+  // Beyond z = −5 (or the maximum range without an echo) and beyond the detection range 1/k the
+  // reading says nothing: no cell there needs visiting.
+  double reach = b.echo ? shadowRange(s, range) : maxRange;
   if (s.attenuationSlope > 0.0) reach = std::min(reach, 1.0 / s.attenuationSlope);
   b.reach = reach;
   return b;
@@ -135,7 +165,7 @@ ModelValue KonoligeModel::evaluate(double delta, double theta, double range, dou
 }
 
 double KonoligeModel::reach(double maxRange) const {
-  double r = maxRange - kZShadow * (s_.sd0 + s_.sd1 * maxRange);
+  double r = shadowRange(s_, maxRange);
   if (s_.attenuationSlope > 0.0) r = std::min(r, 1.0 / s_.attenuationSlope);
   return r;
 }

@@ -25,11 +25,12 @@ struct MurphyBeam {
   double halfAngle = 0.0;  // β
   bool echo = true;
   double s = 0.0, R = 5.0, tolerance = 0.1, maxOcc = 0.98;
+  double halfInvR = 0.1, halfInvBeta = 2.0;  // 1/(2R), 1/(2β): no division per cell
 
   ModelValue at(double r, double alpha) const {
     const double a = std::abs(alpha);
     if (a > halfAngle || r > reach) return {};
-    const double v = std::clamp(((R - r) / R + (halfAngle - a) / halfAngle) / 2.0, 0.0, 1.0);
+    const double v = std::clamp((R - r) * halfInvR + (halfAngle - a) * halfInvBeta, 0.0, 1.0);
     if (echo && std::abs(r - s) <= tolerance) {
       const double pOcc = std::clamp(v * maxOcc, 1.0 - maxOcc, maxOcc);
       return ModelValue{BeamRegion::Occupied, 0.0, pOcc, pOcc};
@@ -50,6 +51,8 @@ MurphyBeam prepareMurphy(double range, double maxRange, double R, double beta, d
   b.active = true;
   b.halfAngle = beta;
   b.R = R;
+  b.halfInvR = 0.5 / R;
+  b.halfInvBeta = 0.5 / beta;
   b.tolerance = tolerance;
   b.maxOcc = maxOcc;
   b.s = b.echo ? range : maxRange;

@@ -24,6 +24,7 @@ struct ParameterizedBeam {
   double emptyEnd = 0.0;   // s − P3, or the maximum range without an echo
   double emptySlope = 0.0; // (0.5 − P2 − P1) / emptyEnd
   double s = 0.0, p1 = 0.0, p2 = 0.0, p3 = 0.0, p4 = 0.0;
+  double tentSlope = 0.0;  // (P4 − 0.5 − P2) / P3
   bool echo = true;
 
   ModelValue at(double r, double alpha) const {
@@ -36,7 +37,7 @@ struct ParameterizedBeam {
       region = BeamRegion::Empty;
     } else {
       // Tent: 0.5 + P2 at |r − s| = P3, P4 at r = s.
-      axis = p4 - (p4 - 0.5 - p2) * std::abs(r - s) / p3;
+      axis = p4 - tentSlope * std::abs(r - s);
       region = BeamRegion::Occupied;
     }
     const double p = (halfAngle - a) * invHalfAngle * (axis - 0.5) + 0.5;  // eq 7
@@ -55,6 +56,7 @@ ParameterizedBeam prepareParameterized(double range, double maxRange, double p1,
   b.halfAngle = p5;
   b.invHalfAngle = 1.0 / p5;
   b.p1 = p1, b.p2 = p2, b.p3 = p3, b.p4 = p4;
+  b.tentSlope = (p4 - 0.5 - p2) / p3;
   if (b.echo) {
     b.s = range;
     b.emptyEnd = range - p3;
