@@ -69,11 +69,12 @@ Dataset loadLog(const std::string& path) {
   }
 }
 
-BuiltMap buildMap(const Dataset& data, const MapOptions& o) {
+BuiltMap buildMap(const Dataset& data, const MapOptions& o, const std::string& logPath,
+                  const std::optional<GridSpec>& onGrid, FootprintObserver* observer) {
   if (o.settings.pose == PoseSource::Truth && !data.hasTruth()) {
-    throw InputError(o.log + ": the log has no true pose for every scan; map with --pose odom");
+    throw InputError(logPath + ": the log has no true pose for every scan; map with --pose odom");
   }
-  const GridSpec grid = data.fittingGrid(o.settings.pose, o.cell);
+  const GridSpec grid = onGrid ? *onGrid : data.fittingGrid(o.settings.pose, o.cell);
   if (static_cast<double>(grid.width) * grid.height > kMaxCells) {
     std::ostringstream msg;
     msg << "--cell " << o.cell << " makes a grid of " << grid.width << " x " << grid.height
@@ -83,13 +84,14 @@ BuiltMap buildMap(const Dataset& data, const MapOptions& o) {
   BuiltMap out;
   try {
     Mapper mapper(data.ring, grid, o.settings);
+    mapper.setObserver(observer);
     const auto t0 = std::chrono::steady_clock::now();
     mapper.mapDataset(data, o.until);
     out.elapsedMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     out.readings = mapper.readingsIntegrated();
     out.map = mapper.snapshot();
   } catch (const MapperError& e) {
-    throw InputError(o.log + ": " + e.what());
+    throw InputError(logPath + ": " + e.what());
   }
   return out;
 }
@@ -105,7 +107,7 @@ int runMap(Arguments& args) {
   if (!png && (legend || scale != 1)) throw UsageError("--legend and --scale shape the PNG; give --png FILE");
 
   const Dataset data = loadLog(o.log);
-  const BuiltMap built = buildMap(data, o);
+  const BuiltMap built = buildMap(data, o, o.log);
 
   if (png) {
     PngOptions po;

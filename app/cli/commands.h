@@ -7,5 +7,7 @@ namespace sg::cli {
 
 int runModels(Arguments& args);
 int runMap(Arguments& args);
+int runScore(Arguments& args);
+int runGoodness(Arguments& args);
 
 }  // namespace sg::cli

@@ -13,11 +13,20 @@ namespace {
 constexpr const char* kUsage = R"(usage: sonargrid-cli COMMAND [OPTIONS]
 
 commands:
-  models [--json]            list sensor models, update rules, their parameters and allowed pairs
+  models [--json | --markdown]
+                             list sensor models, update rules, their parameters and allowed pairs
   map --log FILE --model M --rule R [--pose odom|truth] [--set NAME=VALUE]...
       [--cell METRES] [--until SECONDS] [--png FILE [--legend] [--scale N]]
       [--ros-map BASENAME] [--json]
                              build an occupancy grid from a log
+  score --reference REF (--log FILE [map flags] | --map FILE.yaml)
+      [--metrics LIST] [--pairs N] [--seed N] [--json]
+                             score a map against a reference (JSON, ArMap .map or ROS
+                             .yaml): IOP, correlation, map score, match, path comparison,
+                             cross-entropy, Brier, AUC, precision/recall/F1/IoU
+  goodness --log FILE [map flags] [--second-log FILE] [--json]
+                             map quality without a reference: VSDNS, derivative noise,
+                             two-run comparison
   help                       this text
 
 See docs/cli.md for the full contract.
@@ -28,7 +37,7 @@ See docs/cli.md for the full contract.
 int main(int argc, char** argv) {
   std::vector<std::string> raw(argv + 1, argv + argc);
   if (raw.empty()) {
-    std::cerr << kUsage;
+    std::cerr << "sonargrid-cli: no command given (try sonargrid-cli help)\n";
     return 2;
   }
   const std::string command = raw.front();
@@ -40,6 +49,8 @@ int main(int argc, char** argv) {
     }
     if (command == "models") return sg::cli::runModels(args);
     if (command == "map") return sg::cli::runMap(args);
+    if (command == "score") return sg::cli::runScore(args);
+    if (command == "goodness") return sg::cli::runGoodness(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';

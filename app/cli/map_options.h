@@ -3,6 +3,7 @@
 // --log, --pose, --model, --rule, --set, --cell, --until.
 
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "arguments.h"
@@ -31,6 +32,10 @@ struct BuiltMap {
   std::size_t readings = 0;
   double elapsedMs = 0.0;  // mapping only, not reading the log
 };
-BuiltMap buildMap(const Dataset& data, const MapOptions& options);
+// Maps `data`, read from `logPath` (for messages), on `grid` — by default the log's own fitting grid
+// at --cell — feeding `observer` (if any) every footprint.
+BuiltMap buildMap(const Dataset& data, const MapOptions& options, const std::string& logPath,
+                  const std::optional<GridSpec>& grid = std::nullopt,
+                  FootprintObserver* observer = nullptr);
 
 }  // namespace sg::cli

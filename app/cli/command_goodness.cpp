@@ -1,0 +1,93 @@
+// `sonargrid-cli goodness`: map quality without a reference (paper 002 §5; docs/cli.md,
+// docs/metrics.md): VSDNS and derivative noise of one run, and the two-run comparison when a second
+// log of the same place is given.
+
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "map_options.h"
+#include "sonargrid/metrics/derivative_noise.h"
+#include "sonargrid/metrics/two_run_comparison.h"
+#include "sonargrid/metrics/vsdns.h"
+
+namespace sg::cli {
+namespace {
+
+// One grid of the chosen cell size holding both runs; both fitting grids are snapped to multiples
+// of the cell size, so the union is too and each run's cells line up with the other's.
+GridSpec commonGrid(const GridSpec& a, const GridSpec& b) {
+  const Position lo = a.origin.cwiseMin(b.origin);
+  const Position hi = (a.origin + Position(a.widthMetres(), a.heightMetres()))
+                          .cwiseMax(b.origin + Position(b.widthMetres(), b.heightMetres()));
+  GridSpec g = GridSpec::covering(lo, hi, a.cellSize, 0.0);
+  return g;
+}
+
+nlohmann::ordered_json orNull(const std::optional<double>& v) {
+  return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
+}
+
+}  // namespace
+
+int runGoodness(Arguments& args) {
+  const MapOptions o = parseMapOptions(args);
+  const std::optional<std::string> secondLog = args.value("--second-log");
+  const bool json = args.flag("--json");
+  args.finish();
+
+  const Dataset first = loadLog(o.log);
+  std::optional<Dataset> second;
+  if (secondLog) second = loadLog(*secondLog);
+  GridSpec grid = first.fittingGrid(o.settings.pose, o.cell);
+  if (second) grid = commonGrid(grid, second->fittingGrid(o.settings.pose, o.cell));
+
+  VsdnsAccumulator vsdns;
+  const BuiltMap run = buildMap(first, o, o.log, grid, &vsdns);
+  const VsdnsAccumulator::Result spread = vsdns.result();
+  const DerivativeNoise noise = derivativeNoise(run.map);
+  std::optional<TwoRunComparison> twoRuns;
+  std::optional<BuiltMap> secondRun;
+  if (second) {
+    secondRun = buildMap(*second, o, *secondLog, grid);
+    twoRuns = compareTwoRuns(run.map, secondRun->map);
+  }
+
+  if (json) {
+    nlohmann::ordered_json out;
+    out["vsdns"] = orNull(spread.vsdns);
+    out["derivative_noise"] = noise.sum;
+    out["derivative_noise_mean"] = orNull(noise.mean);
+    out["two_run_positive"] =
+        twoRuns ? nlohmann::ordered_json(twoRuns->positive) : nlohmann::ordered_json(nullptr);
+    out["two_run_negative"] =
+        twoRuns ? nlohmann::ordered_json(twoRuns->negative) : nlohmann::ordered_json(nullptr);
+    std::cout << out.dump() << '\n';
+    return 0;
+  }
+  std::cout << o.log << ": " << run.readings << " readings mapped with " << o.settings.model
+            << " x " << o.settings.rule << " on " << grid.width << " x " << grid.height
+            << " cells of " << grid.cellSize << " m\n";
+  std::cout << "  VSDNS                 ";
+  if (spread.vsdns)
+    std::cout << *spread.vsdns;
+  else
+    std::cout << "undefined";
+  std::cout << "  (mean sigma of the model's values over " << spread.cellsWithSpread
+            << " cells with sigma != 0)\n";
+  std::cout << "  derivative noise      " << noise.sum << "  (sum over " << noise.cellsScored
+            << " fully observed 3x3 windows; mean ";
+  if (noise.mean)
+    std::cout << *noise.mean;
+  else
+    std::cout << "undefined";
+  std::cout << ")\n";
+  if (twoRuns) {
+    std::cout << "  two runs (" << *secondLog << ")  " << twoRuns->positive << " cells agree, "
+              << twoRuns->negative
+              << " differ (occupied when p > 0.5; cells observed in both runs)\n";
+  }
+  return 0;
+}
+
+}  // namespace sg::cli

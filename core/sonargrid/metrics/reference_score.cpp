@@ -1,0 +1,159 @@
+#include "sonargrid/metrics/reference_score.h"
+
+#include <array>
+#include <sstream>
+#include <utility>
+
+#include "sonargrid/reference/actual_position_grid.h"
+
+namespace sg {
+namespace {
+
+constexpr std::array<std::pair<Metric, const char*>, 14> kNames{{
+    {Metric::Iop, "iop"},
+    {Metric::Correlation, "correlation"},
+    {Metric::MapScore, "map_score"},
+    {Metric::MapScoreOccupied, "map_score_occupied"},
+    {Metric::Match, "match"},
+    {Metric::PathFalsePositive, "path_false_positive"},
+    {Metric::PathFalseNegative, "path_false_negative"},
+    {Metric::CrossEntropy, "cross_entropy"},
+    {Metric::Brier, "brier"},
+    {Metric::Auc, "auc"},
+    {Metric::Precision, "precision"},
+    {Metric::Recall, "recall"},
+    {Metric::F1, "f1"},
+    {Metric::Iou, "iou"},
+}};
+
+bool wants(const std::set<Metric>& s, std::initializer_list<Metric> any) {
+  for (Metric m : any) {
+    if (s.count(m) != 0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+const std::vector<Metric>& allMetrics() {
+  static const std::vector<Metric> all = [] {
+    std::vector<Metric> v;
+    for (const auto& [m, name] : kNames) v.push_back(m);
+    return v;
+  }();
+  return all;
+}
+
+const char* metricName(Metric m) {
+  for (const auto& [metric, name] : kNames) {
+    if (metric == m) return name;
+  }
+  return "?";
+}
+
+std::set<Metric> parseMetricList(const std::string& list) {
+  std::set<Metric> out;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    std::size_t comma = list.find(',', start);
+    if (comma == std::string::npos) comma = list.size();
+    const std::string name = list.substr(start, comma - start);
+    bool known = false;
+    if (name == "path") {
+      out.insert(Metric::PathFalsePositive);
+      out.insert(Metric::PathFalseNegative);
+      known = true;
+    }
+    for (const auto& [m, n] : kNames) {
+      if (name == n) {
+        out.insert(m);
+        known = true;
+      }
+    }
+    if (!known) {
+      std::string names = "path";
+      for (const auto& [m, n] : kNames) names += std::string(", ") + n;
+      throw std::invalid_argument(
+          (name.empty() ? std::string("an empty metric name") : "unknown metric '" + name + "'") +
+          "; choose from " + names);
+    }
+    start = comma + 1;
+  }
+  return out;
+}
+
+std::optional<double> ReferenceScore::value(Metric m) const {
+  if (computed.count(m) == 0) return std::nullopt;
+  switch (m) {
+    case Metric::Iop:
+      return iop.mm;
+    case Metric::Correlation:
+      return agreement.correlationPct;
+    case Metric::MapScore:
+      return agreement.mapScorePct;
+    case Metric::MapScoreOccupied:
+      return agreement.mapScoreOccupiedPct;
+    case Metric::Match:
+      return agreement.matchBits;
+    case Metric::PathFalsePositive:
+      return paths.falsePositivePct;
+    case Metric::PathFalseNegative:
+      return paths.falseNegativePct;
+    case Metric::CrossEntropy:
+      return agreement.crossEntropyBits;
+    case Metric::Brier:
+      return agreement.brier;
+    case Metric::Auc:
+      return classification.auc;
+    case Metric::Precision:
+      return classification.precision;
+    case Metric::Recall:
+      return classification.recall;
+    case Metric::F1:
+      return classification.f1;
+    case Metric::Iou:
+      return classification.iou;
+  }
+  return std::nullopt;
+}
+
+ReferenceScore scoreAgainstReference(const OccupancyMap& map, const ReferenceMap& reference,
+                                     const ScoreOptions& options) {
+  const std::size_t n = map.spec.cellCount();
+  if (n == 0 || map.probability.size() != n || map.level.size() != n || map.filled.size() != n ||
+      map.observed.size() != n) {
+    throw std::invalid_argument("score: the map's layers do not match its grid");
+  }
+  ReferenceScore out;
+  out.computed = options.metrics;
+  const ActualPositionGrid apg = ActualPositionGrid::rasterise(reference, map.spec);
+  out.apgCells = apg.count();
+  if (out.apgCells == 0) {
+    std::ostringstream msg;
+    msg << "no edge of the reference crosses the map's grid (" << map.spec.widthMetres() << " m x "
+        << map.spec.heightMetres() << " m from (" << map.spec.origin.x() << ", "
+        << map.spec.origin.y() << ")): are the reference and the map in the same frame and unit?";
+    throw MetricsError(msg.str());
+  }
+  const IdealMap ideal = IdealMap::fromReference(reference, apg);
+  out.idealFree = ideal.count(IdealCell::Free);
+  out.idealOccupied = ideal.count(IdealCell::Occupied);
+  out.idealUnknown = ideal.count(IdealCell::Unknown);
+  for (std::size_t i = 0; i < n; ++i) out.cellsEvaluated += evaluatedCell(map, ideal, i) ? 1 : 0;
+
+  const std::set<Metric>& m = options.metrics;
+  if (wants(m, {Metric::Iop})) out.iop = indexOfPerformance(map, apg);
+  if (wants(m, {Metric::Correlation, Metric::MapScore, Metric::MapScoreOccupied, Metric::Match,
+                Metric::CrossEntropy, Metric::Brier})) {
+    out.agreement = mapAgreement(map, ideal);
+  }
+  if (wants(m, {Metric::Auc, Metric::Precision, Metric::Recall, Metric::F1, Metric::Iou})) {
+    out.classification = classifyOccupancy(map, ideal);
+  }
+  if (wants(m, {Metric::PathFalsePositive, Metric::PathFalseNegative})) {
+    out.paths = comparePaths(map, ideal, options.pairs, options.seed);
+  }
+  return out;
+}
+
+}  // namespace sg
