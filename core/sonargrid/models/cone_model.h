@@ -8,7 +8,9 @@
 
 namespace sg {
 
-// Prepared must provide: bool active; double reach; double halfAngle; ModelValue at(double, double).
+// Prepared must provide: bool active; double reach; double halfAngle; ModelValue at(double, double)
+// for any point, and inside(double, double) for points the rasteriser already placed within the
+// reach and the half-angle (the same value without those two tests).
 template <class Prepared>
 void coneFootprint(const Prepared& pb, const Beam& beam, const GridSpec& grid, const BeamTables& tables,
                    Footprint& out) {
@@ -22,7 +24,7 @@ void coneFootprint(const Prepared& pb, const Beam& beam, const GridSpec& grid, c
         dst = out.cells.data() + start;
       },
       [&](std::uint32_t cell, double delta, double theta) {
-        const ModelValue v = pb.at(delta, theta);
+        const ModelValue v = pb.inside(delta, theta);
         if (v.region != BeamRegion::Outside) *dst++ = CellEvidence{cell, v.empty, v.occupied, v.probability};
       });
   out.cells.resize(dst ? static_cast<std::size_t>(dst - out.cells.data()) : start);

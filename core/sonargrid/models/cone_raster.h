@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -97,19 +98,28 @@ void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const
   const int side = tables.side();
   const float reachF = static_cast<float>(reach);
   constexpr double kPi = std::numbers::pi;
-  for (const ConeSpan& span : spans) {
-    const BeamTables::Entry* row = t + (span.dy + r) * side + r;
-    const std::uint32_t rowBase = static_cast<std::uint32_t>((iv + span.dy) * grid.width + iu);
-    for (int dx = span.dx0; dx <= span.dx1; ++dx) {
-      const BeamTables::Entry e = row[dx];
-      if (e.distance > reachF) continue;
-      double theta = static_cast<double>(e.bearing) - h;
-      if (theta > kPi) theta -= 2.0 * kPi;
-      else if (theta < -kPi) theta += 2.0 * kPi;
-      if (std::abs(theta) > halfAngle) continue;
-      fn(rowBase + static_cast<std::uint32_t>(dx), static_cast<double>(e.distance), theta);
+  // Bearings are in [-π, π]: bearing − heading needs a 2π correction only in a cone that crosses
+  // the ±π line. Elsewhere a raw difference beyond ±halfAngle is simply outside.
+  const bool crossesPi = h + halfAngle >= kPi || h - halfAngle < -kPi;
+  auto walk = [&](auto wrap) {
+    for (const ConeSpan& span : spans) {
+      const BeamTables::Entry* row = t + (span.dy + r) * side + r;
+      const std::uint32_t rowBase = static_cast<std::uint32_t>((iv + span.dy) * grid.width + iu);
+      for (int dx = span.dx0; dx <= span.dx1; ++dx) {
+        const BeamTables::Entry e = row[dx];
+        if (e.distance > reachF) continue;
+        double theta = static_cast<double>(e.bearing) - h;
+        if constexpr (decltype(wrap)::value) {
+          if (theta > kPi) theta -= 2.0 * kPi;
+          else if (theta < -kPi) theta += 2.0 * kPi;
+        }
+        if (std::abs(theta) > halfAngle) continue;
+        fn(rowBase + static_cast<std::uint32_t>(dx), static_cast<double>(e.distance), theta);
+      }
     }
-  }
+  };
+  if (crossesPi) walk(std::true_type{});
+  else walk(std::false_type{});
 }
 
 // Without a bound: for callers that only count or collect cells.

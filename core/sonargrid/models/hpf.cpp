@@ -24,7 +24,10 @@ struct HpfBeam {
   double invHalfAngle = 0.0; // 2 / ω
 
   ModelValue at(double delta, double theta) const {
-    if (std::abs(theta) > halfAngle) return {};
+    if (std::abs(theta) > halfAngle || delta > reach) return {};
+    return inside(delta, theta);
+  }
+  ModelValue inside(double delta, double theta) const {
     const double t = theta * invHalfAngle;
     const double angular = 1.0 - t * t;  // Ea = Oa = 1 - (2θ/ω)², eqs 3 and 6
     if (echo && delta >= range - epsilon && delta <= range + epsilon) {

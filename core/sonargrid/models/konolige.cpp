@@ -81,8 +81,11 @@ struct KonoligeBeam {
   double invF = 0.0;
 
   ModelValue at(double r, double theta) const {
+    if (std::abs(theta) > halfAngle || r > reach) return {};
+    return inside(r, theta);
+  }
+  ModelValue inside(double r, double theta) const {
     const double t = std::abs(theta);
-    if (t > halfAngle || r > reach) return {};
     const double a = s->attenuation * (1.0 - std::min(1.0, s->attenuationSlope * r));
     if (a <= 0.0) return {};  // past the detection range the reading says nothing
     const double g = a * (*lobe)(t);

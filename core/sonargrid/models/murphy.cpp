@@ -28,8 +28,11 @@ struct MurphyBeam {
   double halfInvR = 0.1, halfInvBeta = 2.0;  // 1/(2R), 1/(2β): no division per cell
 
   ModelValue at(double r, double alpha) const {
+    if (std::abs(alpha) > halfAngle || r > reach) return {};
+    return inside(r, alpha);
+  }
+  ModelValue inside(double r, double alpha) const {
     const double a = std::abs(alpha);
-    if (a > halfAngle || r > reach) return {};
     const double v = std::clamp((R - r) * halfInvR + (halfAngle - a) * halfInvBeta, 0.0, 1.0);
     if (echo && std::abs(r - s) <= tolerance) {
       const double pOcc = std::clamp(v * maxOcc, 1.0 - maxOcc, maxOcc);

@@ -28,8 +28,11 @@ struct ParameterizedBeam {
   bool echo = true;
 
   ModelValue at(double r, double alpha) const {
+    if (std::abs(alpha) > halfAngle || r > reach) return {};
+    return inside(r, alpha);
+  }
+  ModelValue inside(double r, double alpha) const {
     const double a = std::abs(alpha);
-    if (a > halfAngle || r > reach) return {};
     double axis;
     BeamRegion region;
     if (r < emptyEnd || !echo) {
