@@ -29,14 +29,35 @@ void DempsterShaferRule::apply(const Footprint& fp) {
   for (const CellEvidence& c : fp.cells) {
     double o = std::clamp(static_cast<double>(c.occupied), 0.0, 1.0);
     double e = std::clamp(static_cast<double>(c.empty), 0.0, 1.0);
-    if (o + e > 1.0) {  // no model gives both, but masses must sum to at most one
+    double& mo = occ_[c.cell];
+    double& me = emp_[c.cell];
+    // Every model gives a cell one kind of evidence; Dempster's rule then shortens to
+    //   m(occ) = (m(occ) + m(unk) o) / (1 − m(emp) o),  m(emp) = m(emp)(1 − o) / (1 − m(emp) o)
+    // (and symmetrically for e): the general form below with e = 0, in fewer operations.
+    if (e == 0.0) {
+      const double denominator = 1.0 - me * o;
+      if (denominator <= 0.0) continue;  // total conflict, see below
+      const double inv = 1.0 / denominator;
+      const double mu = 1.0 - mo - me;
+      mo = (mo + mu * o) * inv;
+      me = me * (1.0 - o) * inv;
+      continue;
+    }
+    if (o == 0.0) {
+      const double denominator = 1.0 - mo * e;
+      if (denominator <= 0.0) continue;
+      const double inv = 1.0 / denominator;
+      const double mu = 1.0 - mo - me;
+      me = (me + mu * e) * inv;
+      mo = mo * (1.0 - e) * inv;
+      continue;
+    }
+    if (o + e > 1.0) {  // masses must sum to at most one
       const double s = o + e;
       o /= s;
       e /= s;
     }
     const double u = 1.0 - o - e;
-    double& mo = occ_[c.cell];
-    double& me = emp_[c.cell];
     const double mu = 1.0 - mo - me;
     const double conflict = mo * e + me * o;
     // Total conflict (a certain cell meets certain opposite evidence) leaves Dempster's rule
