@@ -4,6 +4,18 @@
 
 namespace sg {
 
+OccupancyMap OccupancyMap::unobserved(const GridSpec& spec) {
+  OccupancyMap m;
+  m.spec = spec;
+  const std::size_t n = spec.cellCount();
+  m.probability.assign(n, 0.5);
+  m.native.assign(n, 0.0);
+  m.level.assign(n, levelOfProbability(0.5));
+  m.filled.assign(n, 0);
+  m.observed.assign(n, 0);
+  return m;
+}
+
 std::size_t OccupancyMap::filledCount() const {
   return static_cast<std::size_t>(std::count(filled.begin(), filled.end(), std::uint8_t{1}));
 }

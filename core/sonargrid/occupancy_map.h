@@ -22,6 +22,9 @@ struct OccupancyMap {
   std::vector<std::uint8_t> filled;   // 1 where occupied evidence beats free evidence
   std::vector<std::uint8_t> observed; // 1 where at least one reading wrote the cell
 
+  // A map of `spec` where nothing was observed: p 0.5, level 8, nothing filled.
+  static OccupancyMap unobserved(const GridSpec& spec);
+
   std::size_t filledCount() const;
   std::vector<std::size_t> levelHistogram() const;  // kLevels counts over all cells
 };

@@ -32,18 +32,12 @@ namespace {
 
 // A map with every layer sized for w x h cells; levels 8 / p 0.5 / unobserved, like an empty map.
 sg::OccupancyMap makeMap(int w, int h) {
-  sg::OccupancyMap m;
-  m.spec.origin = sg::Position(-1.5, 0.25);
-  m.spec.cellSize = 0.1;
-  m.spec.width = w;
-  m.spec.height = h;
-  const std::size_t n = m.spec.cellCount();
-  m.probability.assign(n, 0.5);
-  m.native.assign(n, 0.0);
-  m.level.assign(n, 8);
-  m.filled.assign(n, 0);
-  m.observed.assign(n, 0);
-  return m;
+  sg::GridSpec spec;
+  spec.origin = sg::Position(-1.5, 0.25);
+  spec.cellSize = 0.1;
+  spec.width = w;
+  spec.height = h;
+  return sg::OccupancyMap::unobserved(spec);
 }
 
 // The 3 x 2 map of the PNG cases. Storage is row-major from the bottom row (index = iy * 3 + ix):

@@ -29,14 +29,8 @@ sg::GridSpec grid(int w, int h) {
 
 // Cells in linear order (iy = 0 first), space-separated; "-" is a never-observed cell (p 0.5).
 sg::OccupancyMap mapOf(const sg::GridSpec& spec, const QString& values) {
-  sg::OccupancyMap m;
-  m.spec = spec;
+  sg::OccupancyMap m = sg::OccupancyMap::unobserved(spec);
   const std::size_t n = spec.cellCount();
-  m.probability.assign(n, 0.5);
-  m.native.assign(n, 0.0);
-  m.level.assign(n, 8);
-  m.filled.assign(n, 0);
-  m.observed.assign(n, 0);
   const QStringList parts = values.split(' ', Qt::SkipEmptyParts);
   if (parts.size() != static_cast<int>(n)) qFatal("mapOf: wrong number of cells");
   for (int i = 0; i < parts.size(); ++i) {
