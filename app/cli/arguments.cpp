@@ -37,9 +37,11 @@ std::vector<std::string> Arguments::values(const std::string& name) {
   std::vector<std::string> out;
   for (std::size_t i = 0; i < args_.size();) {
     if (args_[i] == name) {
-      if (i + 1 >= args_.size() || args_[i + 1].rfind("--", 0) == 0) throw UsageError(name + " needs a value");
+      if (i + 1 >= args_.size() || args_[i + 1].rfind("--", 0) == 0)
+        throw UsageError(name + " needs a value");
       out.push_back(args_[i + 1]);
-      args_.erase(args_.begin() + static_cast<std::ptrdiff_t>(i), args_.begin() + static_cast<std::ptrdiff_t>(i) + 2);
+      args_.erase(args_.begin() + static_cast<std::ptrdiff_t>(i),
+                  args_.begin() + static_cast<std::ptrdiff_t>(i) + 2);
     } else if (args_[i].rfind(name + "=", 0) == 0) {
       out.push_back(args_[i].substr(name.size() + 1));
       args_.erase(args_.begin() + static_cast<std::ptrdiff_t>(i));
@@ -74,9 +76,11 @@ int Arguments::integer(const std::string& name, int fallback, int min, int max) 
   int x = 0;
   const char* end = v->data() + v->size();
   const auto [ptr, ec] = std::from_chars(v->data(), end, x);
-  if (ec != std::errc() || ptr != end) throw UsageError(name + " expects a whole number, got '" + *v + "'");
+  if (ec != std::errc() || ptr != end)
+    throw UsageError(name + " expects a whole number, got '" + *v + "'");
   if (x < min || x > max) {
-    throw UsageError(name + " must be between " + std::to_string(min) + " and " + std::to_string(max) + ", got " + *v);
+    throw UsageError(name + " must be between " + std::to_string(min) + " and " +
+                     std::to_string(max) + ", got " + *v);
   }
   return x;
 }

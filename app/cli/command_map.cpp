@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <sstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "commands.h"
 #include "map_options.h"
@@ -22,9 +22,12 @@ MapOptions parseMapOptions(Arguments& args) {
   MapOptions o;
   o.log = args.required("--log");
   const std::string pose = args.value("--pose").value_or("odom");
-  if (pose == "odom") o.settings.pose = PoseSource::Odometry;
-  else if (pose == "truth") o.settings.pose = PoseSource::Truth;
-  else throw UsageError("--pose takes odom or truth, got '" + pose + "'");
+  if (pose == "odom")
+    o.settings.pose = PoseSource::Odometry;
+  else if (pose == "truth")
+    o.settings.pose = PoseSource::Truth;
+  else
+    throw UsageError("--pose takes odom or truth, got '" + pose + "'");
   o.settings.model = args.required("--model");
   o.settings.rule = args.required("--rule");
   o.cell = args.number("--cell", 0.05, 0.001, 10.0);
@@ -42,15 +45,18 @@ MapOptions parseMapOptions(Arguments& args) {
   }
   const Compatibility c = compatibility(o.settings.model, o.settings.rule);
   if (!c.allowed) {
-    throw InputError("model '" + o.settings.model + "' cannot be used with rule '" + o.settings.rule + "': " + c.reason);
+    throw InputError("model '" + o.settings.model + "' cannot be used with rule '" +
+                     o.settings.rule + "': " + c.reason);
   }
   o.settings.parameters = defaultParameters(o.settings.model, o.settings.rule);
   std::vector<std::string> seen;
   for (const std::string& kv : args.values("--set")) {
     const auto eq = kv.find('=');
-    if (eq == std::string::npos || eq == 0) throw UsageError("--set expects NAME=VALUE, got '" + kv + "'");
+    if (eq == std::string::npos || eq == 0)
+      throw UsageError("--set expects NAME=VALUE, got '" + kv + "'");
     const std::string name = kv.substr(0, eq);
-    if (std::find(seen.begin(), seen.end(), name) != seen.end()) throw UsageError("--set " + name + " is given twice");
+    if (std::find(seen.begin(), seen.end(), name) != seen.end())
+      throw UsageError("--set " + name + " is given twice");
     seen.push_back(name);
     try {
       o.settings.parameters.set(name, parseNumber(kv.substr(eq + 1), "--set " + name));
@@ -87,7 +93,8 @@ BuiltMap buildMap(const Dataset& data, const MapOptions& o, const std::string& l
     mapper.setObserver(observer);
     const auto t0 = std::chrono::steady_clock::now();
     mapper.mapDataset(data, o.until);
-    out.elapsedMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    out.elapsedMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     out.readings = mapper.readingsIntegrated();
     out.map = mapper.snapshot();
   } catch (const MapperError& e) {
@@ -104,7 +111,8 @@ int runMap(Arguments& args) {
   const auto ros = args.value("--ros-map");
   const bool json = args.flag("--json");
   args.finish();
-  if (!png && (legend || scale != 1)) throw UsageError("--legend and --scale shape the PNG; give --png FILE");
+  if (!png && (legend || scale != 1))
+    throw UsageError("--legend and --scale shape the PNG; give --png FILE");
 
   const Dataset data = loadLog(o.log);
   const BuiltMap built = buildMap(data, o, o.log);
@@ -123,7 +131,8 @@ int runMap(Arguments& args) {
     out["model"] = o.settings.model;
     out["rule"] = o.settings.rule;
     nlohmann::ordered_json params = nlohmann::ordered_json::object();
-    for (const ParameterSpec& s : o.settings.parameters.specs()) params[s.name] = o.settings.parameters.get(s.name);
+    for (const ParameterSpec& s : o.settings.parameters.specs())
+      params[s.name] = o.settings.parameters.get(s.name);
     out["params"] = params;
     out["grid"] = {{"width", m.spec.width},
                    {"height", m.spec.height},
@@ -135,9 +144,10 @@ int runMap(Arguments& args) {
     out["elapsed_ms"] = built.elapsedMs;
     std::cout << out.dump() << '\n';
   } else {
-    std::cout << o.log << ": " << built.readings << " readings mapped with " << o.settings.model << " × "
-              << o.settings.rule << " on " << m.spec.width << " x " << m.spec.height << " cells of "
-              << m.spec.cellSize << " m in " << built.elapsedMs << " ms; " << m.filledCount() << " cells filled\n";
+    std::cout << o.log << ": " << built.readings << " readings mapped with " << o.settings.model
+              << " × " << o.settings.rule << " on " << m.spec.width << " x " << m.spec.height
+              << " cells of " << m.spec.cellSize << " m in " << built.elapsedMs << " ms; "
+              << m.filledCount() << " cells filled\n";
     if (png) std::cout << "wrote " << *png << '\n';
     if (ros) std::cout << "wrote " << *ros << ".yaml and " << *ros << ".pgm\n";
   }

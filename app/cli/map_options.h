@@ -32,8 +32,8 @@ struct BuiltMap {
   std::size_t readings = 0;
   double elapsedMs = 0.0;  // mapping only, not reading the log
 };
-// Maps `data`, read from `logPath` (for messages), on `grid` — by default the log's own fitting grid
-// at --cell — feeding `observer` (if any) every footprint.
+// Maps `data`, read from `logPath` (for messages), on `grid` — by default the log's own fitting
+// grid at --cell — feeding `observer` (if any) every footprint.
 BuiltMap buildMap(const Dataset& data, const MapOptions& options, const std::string& logPath,
                   const std::optional<GridSpec>& grid = std::nullopt,
                   FootprintObserver* observer = nullptr);

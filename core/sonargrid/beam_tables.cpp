@@ -42,7 +42,8 @@ std::shared_ptr<const BeamTables> BeamTables::shared(double cellSize, double rea
   const int radius = static_cast<int>(std::ceil(reach / cellSize)) + 2;
   std::lock_guard lock(mutex);
   // Any cached table of this cell size that reaches far enough serves.
-  for (auto it = cache.lower_bound({cellSize, radius}); it != cache.end() && it->first.first == cellSize; ++it) {
+  for (auto it = cache.lower_bound({cellSize, radius});
+       it != cache.end() && it->first.first == cellSize; ++it) {
     return it->second;
   }
   if (cache.size() >= kMaxEntries) cache.erase(cache.begin());

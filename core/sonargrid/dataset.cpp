@@ -13,7 +13,8 @@ std::size_t Dataset::readingCount() const {
 }
 
 bool Dataset::hasTruth() const {
-  return !scans.empty() && std::all_of(scans.begin(), scans.end(), [](const Scan& s) { return s.truth.has_value(); });
+  return !scans.empty() &&
+         std::all_of(scans.begin(), scans.end(), [](const Scan& s) { return s.truth.has_value(); });
 }
 
 GridSpec Dataset::fittingGrid(PoseSource source, double cellSize, double margin) const {
@@ -29,7 +30,8 @@ GridSpec Dataset::fittingGrid(PoseSource source, double cellSize, double margin)
       hi = hi.cwiseMax(sensor.position);
       if (r.echo() && r.range < ring.maxRange) {
         for (const double a : {0.0, -ring.apertureRad / 2, ring.apertureRad / 2}) {
-          const Position end = sensor.transform(Position(r.range * std::cos(a), r.range * std::sin(a)));
+          const Position end =
+              sensor.transform(Position(r.range * std::cos(a), r.range * std::sin(a)));
           lo = lo.cwiseMin(end);
           hi = hi.cwiseMax(end);
         }

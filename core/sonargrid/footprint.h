@@ -28,7 +28,10 @@ struct CellEvidence {
 
   CellEvidence() = default;
   CellEvidence(std::uint32_t c, double e, double o, double p)
-      : cell(c), empty(static_cast<float>(e)), occupied(static_cast<float>(o)), probability(static_cast<float>(p)) {}
+      : cell(c),
+        empty(static_cast<float>(e)),
+        occupied(static_cast<float>(o)),
+        probability(static_cast<float>(p)) {}
 };
 
 // An allocator whose value-less construct() leaves trivially constructible elements unwritten, so
@@ -59,9 +62,9 @@ struct Footprint {
 
 // One reading placed in the world.
 struct Beam {
-  Pose2D sensor;         // world pose of the transducer
-  double range = 0.0;    // metres, or Reading::kNoEcho
-  double maxRange = 5.0; // of the transducer: a no-echo reading clears at most this far
+  Pose2D sensor;          // world pose of the transducer
+  double range = 0.0;     // metres, or Reading::kNoEcho
+  double maxRange = 5.0;  // of the transducer: a no-echo reading clears at most this far
   bool echo() const { return std::isfinite(range); }
 };
 

@@ -14,7 +14,8 @@ double cellMultiple(double k, double cellSize) {
 }
 }  // namespace
 
-GridSpec GridSpec::covering(const Position& lo, const Position& hi, double cellSize, double margin) {
+GridSpec GridSpec::covering(const Position& lo, const Position& hi, double cellSize,
+                            double margin) {
   GridSpec spec;
   spec.cellSize = cellSize;
   const double x0 = cellMultiple(std::floor((lo.x() - margin) / cellSize), cellSize);

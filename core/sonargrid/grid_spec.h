@@ -20,11 +20,15 @@ struct GridSpec {
   int width = 0;
   int height = 0;
 
-  std::size_t cellCount() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
+  std::size_t cellCount() const {
+    return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  }
   double widthMetres() const { return width * cellSize; }
   double heightMetres() const { return height * cellSize; }
 
-  bool contains(const CellIndex& c) const { return c.x() >= 0 && c.y() >= 0 && c.x() < width && c.y() < height; }
+  bool contains(const CellIndex& c) const {
+    return c.x() >= 0 && c.y() >= 0 && c.x() < width && c.y() < height;
+  }
 
   // The cell containing world point p (it may lie outside the grid: check contains()).
   CellIndex worldToCell(const Position& p) const {
@@ -35,10 +39,12 @@ struct GridSpec {
     return {origin.x() + (c.x() + 0.5) * cellSize, origin.y() + (c.y() + 0.5) * cellSize};
   }
   std::size_t linear(const CellIndex& c) const {
-    return static_cast<std::size_t>(c.y()) * static_cast<std::size_t>(width) + static_cast<std::size_t>(c.x());
+    return static_cast<std::size_t>(c.y()) * static_cast<std::size_t>(width) +
+           static_cast<std::size_t>(c.x());
   }
   CellIndex fromLinear(std::size_t i) const {
-    return {static_cast<int>(i % static_cast<std::size_t>(width)), static_cast<int>(i / static_cast<std::size_t>(width))};
+    return {static_cast<int>(i % static_cast<std::size_t>(width)),
+            static_cast<int>(i / static_cast<std::size_t>(width))};
   }
 
   bool operator==(const GridSpec&) const = default;

@@ -24,9 +24,11 @@ Mapper::Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings
   if (!rule_) throw MapperError("unknown update rule '" + settings.rule + "'");
   const Compatibility c = compatibility(settings.model, settings.rule);
   if (!c.allowed) {
-    throw MapperError("model '" + settings.model + "' cannot be used with rule '" + settings.rule + "': " + c.reason);
+    throw MapperError("model '" + settings.model + "' cannot be used with rule '" + settings.rule +
+                      "': " + c.reason);
   }
-  if (grid_.width <= 0 || grid_.height <= 0 || !(grid_.cellSize > 0.0)) throw MapperError("the grid is empty");
+  if (grid_.width <= 0 || grid_.height <= 0 || !(grid_.cellSize > 0.0))
+    throw MapperError("the grid is empty");
   // Parameters the caller did not give stay at their defaults.
   ParameterSet params = defaultParameters(settings.model, settings.rule);
   for (const auto& [name, value] : settings.parameters.values()) {
@@ -53,8 +55,8 @@ void Mapper::setObserver(FootprintObserver* observer) {
 
 Beam Mapper::beamOf(const Pose2D& robot, const Reading& reading) const {
   if (reading.sonar >= ring_.size()) {
-    throw MapperError("reading names sonar " + std::to_string(reading.sonar) + " but the ring has " +
-                      std::to_string(ring_.size()));
+    throw MapperError("reading names sonar " + std::to_string(reading.sonar) +
+                      " but the ring has " + std::to_string(ring_.size()));
   }
   Beam beam;
   beam.sensor = robot.compose(ring_.sonars[reading.sonar].pose);
@@ -78,7 +80,8 @@ void Mapper::applyFootprint(const Footprint& footprint) {
 }
 
 void Mapper::integrate(const Scan& scan, double until) {
-  const Pose2D& robot = settings_.pose == PoseSource::Truth && scan.truth ? *scan.truth : scan.odometry;
+  const Pose2D& robot =
+      settings_.pose == PoseSource::Truth && scan.truth ? *scan.truth : scan.odometry;
   for (const Reading& r : scan.readings) {
     if (r.time > until) continue;
     scratch_.clear();
@@ -187,7 +190,8 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
         break;
       }
       Pipeline::Slot& slot = p.slots[i % kSlots];
-      for (std::int64_t held = slot.holds.load(std::memory_order_acquire); held != static_cast<std::int64_t>(i);
+      for (std::int64_t held = slot.holds.load(std::memory_order_acquire);
+           held != static_cast<std::int64_t>(i);
            held = slot.holds.load(std::memory_order_acquire)) {
         if (p.stop.load(std::memory_order_relaxed)) break;
         // Rather than wait, compute the next unclaimed footprint if its slot is free.

@@ -14,13 +14,13 @@ inline constexpr int kLevels = 16;  // certainty values 0..15 (paper 000 §4.3)
 
 struct OccupancyMap {
   GridSpec spec;
-  std::string model;  // registry names, e.g. "hpf"
-  std::string rule;   // e.g. "addition"
-  std::vector<double> probability;    // p(occupied) in [0, 1]; 0.5 where nothing is known
-  std::vector<double> native;         // the rule's own value (e.g. log-odds, HIMM CV, Occ−Emp)
-  std::vector<std::uint8_t> level;    // 0..15, monotonic in the rule's value
-  std::vector<std::uint8_t> filled;   // 1 where occupied evidence beats free evidence
-  std::vector<std::uint8_t> observed; // 1 where at least one reading wrote the cell
+  std::string model;                   // registry names, e.g. "hpf"
+  std::string rule;                    // e.g. "addition"
+  std::vector<double> probability;     // p(occupied) in [0, 1]; 0.5 where nothing is known
+  std::vector<double> native;          // the rule's own value (e.g. log-odds, HIMM CV, Occ−Emp)
+  std::vector<std::uint8_t> level;     // 0..15, monotonic in the rule's value
+  std::vector<std::uint8_t> filled;    // 1 where occupied evidence beats free evidence
+  std::vector<std::uint8_t> observed;  // 1 where at least one reading wrote the cell
 
   // A map of `spec` where nothing was observed: p 0.5, level 8, nothing filled.
   static OccupancyMap unobserved(const GridSpec& spec);

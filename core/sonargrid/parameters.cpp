@@ -11,7 +11,8 @@ ParameterSet::ParameterSet(const std::vector<ParameterSpec>& specs) : specs_(spe
 }
 
 void ParameterSet::set(const std::string& name, double value) {
-  const auto it = std::find_if(specs_.begin(), specs_.end(), [&](const ParameterSpec& s) { return s.name == name; });
+  const auto it = std::find_if(specs_.begin(), specs_.end(),
+                               [&](const ParameterSpec& s) { return s.name == name; });
   if (it == specs_.end()) {
     std::ostringstream msg;
     msg << "unknown parameter '" << name << "'; this model and rule take:";
@@ -21,7 +22,8 @@ void ParameterSet::set(const std::string& name, double value) {
   }
   if (!std::isfinite(value) || value < it->min || value > it->max) {
     std::ostringstream msg;
-    msg << "parameter '" << name << "' = " << value << " is outside [" << it->min << ", " << it->max << "]";
+    msg << "parameter '" << name << "' = " << value << " is outside [" << it->min << ", " << it->max
+        << "]";
     if (!it->unit.empty()) msg << ' ' << it->unit;
     throw ParameterError(msg.str());
   }

@@ -19,8 +19,12 @@ inline double wrapAngle(double a) {
   return a - std::numbers::pi;
 }
 
-inline double degToRad(double deg) { return deg * std::numbers::pi / 180.0; }
-inline double radToDeg(double rad) { return rad * 180.0 / std::numbers::pi; }
+inline double degToRad(double deg) {
+  return deg * std::numbers::pi / 180.0;
+}
+inline double radToDeg(double rad) {
+  return rad * 180.0 / std::numbers::pi;
+}
 
 struct Pose2D {
   Position position{0.0, 0.0};
@@ -42,11 +46,11 @@ struct Pose2D {
   }
 
   // A point given in this pose's frame, expressed in the world frame.
-  Position transform(const Position& local) const { return position + Eigen::Rotation2Dd(heading) * local; }
-
-  bool operator==(const Pose2D& o) const {
-    return position == o.position && heading == o.heading;
+  Position transform(const Position& local) const {
+    return position + Eigen::Rotation2Dd(heading) * local;
   }
+
+  bool operator==(const Pose2D& o) const { return position == o.position && heading == o.heading; }
 };
 
 }  // namespace sg

@@ -15,8 +15,8 @@ SonarRing fromTable(std::string name, const MountMmDeg* table, std::size_t n) {
   ring.robot = std::move(name);
   ring.sonars.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    ring.sonars.push_back(
-        SonarMount{Pose2D(table[i].xMm / 1000.0, table[i].yMm / 1000.0, degToRad(table[i].headingDeg))});
+    ring.sonars.push_back(SonarMount{
+        Pose2D(table[i].xMm / 1000.0, table[i].yMm / 1000.0, degToRad(table[i].headingDeg))});
   }
   return ring;
 }
@@ -25,10 +25,22 @@ SonarRing fromTable(std::string name, const MountMmDeg* table, std::size_t n) {
 
 SonarRing SonarRing::pioneer3dx() {
   static constexpr std::array<MountMmDeg, 16> kTable{{
-      {69, 136, 90},     {114, 119, 50},    {148, 78, 30},     {166, 27, 10},
-      {166, -27, -10},   {148, -78, -30},   {114, -119, -50},  {69, -136, -90},
-      {-157, -136, -90}, {-203, -119, -130}, {-237, -78, -150}, {-255, -27, -170},
-      {-255, 27, 170},   {-237, 78, 150},   {-203, 119, 130},  {-157, 136, 90},
+      {69, 136, 90},
+      {114, 119, 50},
+      {148, 78, 30},
+      {166, 27, 10},
+      {166, -27, -10},
+      {148, -78, -30},
+      {114, -119, -50},
+      {69, -136, -90},
+      {-157, -136, -90},
+      {-203, -119, -130},
+      {-237, -78, -150},
+      {-255, -27, -170},
+      {-255, 27, 170},
+      {-237, 78, 150},
+      {-203, 119, 130},
+      {-157, 136, 90},
   }};
   return fromTable("p3dx", kTable.data(), kTable.size());
 }
@@ -76,6 +88,8 @@ bool SonarRing::preset(std::string_view name, SonarRing& out) {
   return true;
 }
 
-std::vector<std::string> SonarRing::presetNames() { return {"p3dx", "amigobot", "k2a"}; }
+std::vector<std::string> SonarRing::presetNames() {
+  return {"p3dx", "amigobot", "k2a"};
+}
 
 }  // namespace sg

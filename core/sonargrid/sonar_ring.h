@@ -17,8 +17,8 @@ struct SonarRing {
   std::string robot = "custom";  // preset name, or "custom"
   std::vector<SonarMount> sonars;
   double apertureRad = degToRad(25.0);  // full cone angle of the transducer
-  double minRange = 0.15;              // metres
-  double maxRange = 5.0;               // metres; readings at or beyond it are "no echo"
+  double minRange = 0.15;               // metres
+  double maxRange = 5.0;                // metres; readings at or beyond it are "no echo"
 
   std::size_t size() const { return sonars.size(); }
   bool operator==(const SonarRing&) const = default;
@@ -37,6 +37,8 @@ struct SonarRing {
   static std::vector<std::string> presetNames();
 };
 
-inline bool operator==(const SonarMount& a, const SonarMount& b) { return a.pose == b.pose; }
+inline bool operator==(const SonarMount& a, const SonarMount& b) {
+  return a.pose == b.pose;
+}
 
 }  // namespace sg

@@ -5,7 +5,8 @@
 //             pillar every 3 m between the lanes: what a robot would log there.
 //   stress/…  ranges drawn uniformly from [0.3, 5) m, 15 % no-echo: more and longer cones than
 //             any room gives, so an upper bound.
-// Run: build/tests/bench/bench_mapper --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// Run: build/tests/bench/bench_mapper --benchmark_repetitions=5
+// --benchmark_report_aggregates_only=true
 
 #include <benchmark/benchmark.h>
 
@@ -84,7 +85,8 @@ const sg::Dataset& simulatedWorkload() {
   return d;
 }
 
-void remap(benchmark::State& state, const sg::Dataset& d, const std::string& model, const std::string& rule) {
+void remap(benchmark::State& state, const sg::Dataset& d, const std::string& model,
+           const std::string& rule) {
   sg::GridSpec grid = sg::GridSpec::covering(sg::Position(0, 0), sg::Position(40, 30), 0.05, 0.0);
   sg::MapperSettings settings;
   settings.model = model;
@@ -104,20 +106,23 @@ void remap(benchmark::State& state, const sg::Dataset& d, const std::string& mod
   mapper.mapDataset(d);
   mapper.setObserver(nullptr);
   state.counters["readings"] = static_cast<double>(d.readingCount());
-  state.counters["cells/reading"] = static_cast<double>(counter.cells) / static_cast<double>(d.readingCount());
+  state.counters["cells/reading"] =
+      static_cast<double>(counter.cells) / static_cast<double>(d.readingCount());
 }
 
 int registerAll() {
   for (const std::string& m : sg::sensorModelNames()) {
     for (const std::string& r : sg::updateRuleNames()) {
       if (!sg::compatibility(m, r).allowed) continue;
-      benchmark::RegisterBenchmark(("sim/" + m + "/" + r).c_str(),
-                                   [m, r](benchmark::State& s) { remap(s, simulatedWorkload(), m, r); })
+      benchmark::RegisterBenchmark(
+          ("sim/" + m + "/" + r).c_str(),
+          [m, r](benchmark::State& s) { remap(s, simulatedWorkload(), m, r); })
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1)
           ->UseRealTime();
-      benchmark::RegisterBenchmark(("stress/" + m + "/" + r).c_str(),
-                                   [m, r](benchmark::State& s) { remap(s, stressWorkload(), m, r); })
+      benchmark::RegisterBenchmark(
+          ("stress/" + m + "/" + r).c_str(),
+          [m, r](benchmark::State& s) { remap(s, stressWorkload(), m, r); })
           ->Unit(benchmark::kMillisecond)
           ->Iterations(1)
           ->UseRealTime();

@@ -838,10 +838,11 @@ void TstCli::errors_data() {
                                 << "--cell is given 2 times" << true;
   QTest::newRow("--scale not whole") << map + QStringList{"--png", "x.png", "--scale", "2.5"} << 2
                                      << "--scale expects a whole number, got '2.5'" << true;
-  QTest::newRow("--legend without --png") << map + QStringList{"--legend"} << 2
-                                          << "--legend and --scale shape the PNG; give --png FILE" << true;
-  QTest::newRow("--set twice") << map + QStringList{"--set", "epsilon=0.3", "--set", "epsilon=0.2"} << 2
-                               << "--set epsilon is given twice" << true;
+  QTest::newRow("--legend without --png")
+      << map + QStringList{"--legend"} << 2 << "--legend and --scale shape the PNG; give --png FILE"
+      << true;
+  QTest::newRow("--set twice") << map + QStringList{"--set", "epsilon=0.3", "--set", "epsilon=0.2"}
+                               << 2 << "--set epsilon is given twice" << true;
   QTest::newRow("--json twice") << map + QStringList{"--json", "--json"} << 2
                                 << "--json is given 2 times" << true;
 
@@ -886,19 +887,33 @@ void TstCli::errors() {
 
 namespace {
 const QString kRoomReference = SONARGRID_DATASETS "/room/room.json";
-const QStringList kScoreKeys = {"iop_mm", "correlation_pct", "map_score_pct", "map_score_occupied_pct",
-                                "match_bits", "path_false_positive_pct", "path_false_negative_pct",
-                                "cross_entropy", "brier", "auc", "precision", "recall", "f1", "iou",
+const QStringList kScoreKeys = {"iop_mm",
+                                "correlation_pct",
+                                "map_score_pct",
+                                "map_score_occupied_pct",
+                                "match_bits",
+                                "path_false_positive_pct",
+                                "path_false_negative_pct",
+                                "cross_entropy",
+                                "brier",
+                                "auc",
+                                "precision",
+                                "recall",
+                                "f1",
+                                "iou",
                                 "cells_evaluated"};
-const QStringList kGoodnessKeys = {"vsdns", "derivative_noise", "derivative_noise_mean", "two_run_positive",
-                                   "two_run_negative"};
+const QStringList kGoodnessKeys = {"vsdns", "derivative_noise", "derivative_noise_mean",
+                                   "two_run_positive", "two_run_negative"};
 
-QJsonObject jsonOf(const QByteArray& out) { return QJsonDocument::fromJson(out).object(); }
+QJsonObject jsonOf(const QByteArray& out) {
+  return QJsonDocument::fromJson(out).object();
+}
 }  // namespace
 
 void TstCli::scoreJson() {
-  const QStringList args = {"score", "--reference", kRoomReference, "--log", kRoomLog, "--pose", "truth",
-                            "--model", "himm", "--rule", "himm", "--cell", "0.1", "--json"};
+  const QStringList args = {"score",  "--reference", kRoomReference, "--log", kRoomLog,
+                            "--pose", "truth",       "--model",      "himm",  "--rule",
+                            "himm",   "--cell",      "0.1",          "--json"};
   const Run r = runCli(args);
   QVERIFY2(r.finished && r.code == 0 && r.err.isEmpty(), describe(args, r));
   const QJsonObject o = jsonOf(r.out);
@@ -911,7 +926,8 @@ void TstCli::scoreJson() {
     const double v = o[k].toDouble(-1);
     QVERIFY2(v >= 0 && v <= 1, k);
   }
-  for (const char* k : {"correlation_pct", "map_score_pct", "path_false_positive_pct", "path_false_negative_pct"}) {
+  for (const char* k :
+       {"correlation_pct", "map_score_pct", "path_false_positive_pct", "path_false_negative_pct"}) {
     QVERIFY2(o[k].isDouble() && o[k].toDouble() >= -100 && o[k].toDouble() <= 100, k);
   }
   // The same seed and pairs give the same answer.
@@ -920,8 +936,9 @@ void TstCli::scoreJson() {
 }
 
 void TstCli::scoreMetricsSubset() {
-  const QStringList args = {"score", "--reference", kRoomReference, "--log", kRoomLog, "--model", "himm",
-                            "--rule", "himm", "--metrics", "iop", "--json"};
+  const QStringList args = {"score",  "--reference", kRoomReference, "--log",
+                            kRoomLog, "--model",     "himm",         "--rule",
+                            "himm",   "--metrics",   "iop",          "--json"};
   const Run r = runCli(args);
   QVERIFY2(r.finished && r.code == 0, describe(args, r));
   // Metrics not asked for are left out; cells_evaluated is always there (docs/cli.md).
@@ -932,41 +949,52 @@ void TstCli::scoreBuiltMapFile() {
   // A map exported with --ros-map scores as a map file: HIMM's levels survive the round trip, so
   // the IOP from the file equals the IOP from the log (docs/metrics.md).
   const QString base = tmp_.filePath("himm-room");
-  const QStringList common = {"--log", kRoomLog, "--pose", "truth", "--model", "himm", "--rule", "himm"};
+  const QStringList common = {"--log",   kRoomLog, "--pose", "truth",
+                              "--model", "himm",   "--rule", "himm"};
   const Run exported = runCli(QStringList{"map"} + common + QStringList{"--ros-map", base});
   QVERIFY2(exported.finished && exported.code == 0, describe({"map"}, exported));
-  const Run fromLog = runCli(QStringList{"score", "--reference", kRoomReference, "--metrics", "iop", "--json"} + common);
-  const QStringList fileArgs = {"score", "--reference", kRoomReference, "--map", base + ".yaml", "--metrics", "iop", "--json"};
+  const Run fromLog = runCli(
+      QStringList{"score", "--reference", kRoomReference, "--metrics", "iop", "--json"} + common);
+  const QStringList fileArgs = {"score",        "--reference", kRoomReference, "--map",
+                                base + ".yaml", "--metrics",   "iop",          "--json"};
   const Run fromFile = runCli(fileArgs);
   QVERIFY2(fromLog.code == 0 && fromFile.code == 0, describe(fileArgs, fromFile));
-  QVERIFY(std::abs(jsonOf(fromLog.out)["iop_mm"].toDouble() - jsonOf(fromFile.out)["iop_mm"].toDouble()) < 1e-6);
+  QVERIFY(std::abs(jsonOf(fromLog.out)["iop_mm"].toDouble() -
+                   jsonOf(fromFile.out)["iop_mm"].toDouble()) < 1e-6);
 }
 
 void TstCli::scoreErrors_data() {
   QTest::addColumn<QStringList>("args");
   QTest::addColumn<QString>("stderrStart");
   const QString bad = tmp_.filePath("bad-reference.json");
-  QVERIFY(writeFile(bad, "{\"format\": \"sonargrid-reference\", \"version\": 1, \"units\": \"m\",\n \"objects\": [}\n"));
-  QTest::newRow("no reference") << QStringList{"score", "--log", kRoomLog, "--model", "himm", "--rule", "himm"}
+  QVERIFY(writeFile(bad,
+                    "{\"format\": \"sonargrid-reference\", \"version\": 1, \"units\": \"m\",\n "
+                    "\"objects\": [}\n"));
+  QTest::newRow("no reference") << QStringList{"score", "--log",  kRoomLog, "--model",
+                                               "himm",  "--rule", "himm"}
                                 << "sonargrid-cli: missing --reference";
-  QTest::newRow("neither log nor map") << QStringList{"score", "--reference", kRoomReference} << "sonargrid-cli: ";
+  QTest::newRow("neither log nor map")
+      << QStringList{"score", "--reference", kRoomReference} << "sonargrid-cli: ";
   QTest::newRow("both log and map")
-      << QStringList{"score", "--reference", kRoomReference, "--log", kRoomLog, "--map", "x.yaml", "--model",
-                     "himm", "--rule", "himm"}
+      << QStringList{"score",  "--reference", kRoomReference, "--log",  kRoomLog, "--map",
+                     "x.yaml", "--model",     "himm",         "--rule", "himm"}
       << "sonargrid-cli: ";
-  QTest::newRow("unknown metric")
-      << QStringList{"score", "--reference", kRoomReference, "--log", kRoomLog, "--model", "himm", "--rule", "himm",
-                     "--metrics", "iop,bogus"}
-      << "sonargrid-cli: ";
+  QTest::newRow("unknown metric") << QStringList{"score",  "--reference", kRoomReference, "--log",
+                                                 kRoomLog, "--model",     "himm",         "--rule",
+                                                 "himm",   "--metrics",   "iop,bogus"}
+                                  << "sonargrid-cli: ";
   QTest::newRow("malformed reference names its line")
-      << QStringList{"score", "--reference", bad, "--log", kRoomLog, "--model", "himm", "--rule", "himm"}
+      << QStringList{"score",   "--reference", bad,      "--log", kRoomLog,
+                     "--model", "himm",        "--rule", "himm"}
       << "sonargrid-cli: " + bad + ":2";
   QTest::newRow("missing reference file")
-      << QStringList{"score", "--reference", tmp_.filePath("nope.json"), "--log", kRoomLog, "--model", "himm",
-                     "--rule", "himm"}
+      << QStringList{"score", "--reference", tmp_.filePath("nope.json"),
+                     "--log", kRoomLog,      "--model",
+                     "himm",  "--rule",      "himm"}
       << "sonargrid-cli: " + tmp_.filePath("nope.json");
-  QTest::newRow("goodness without log") << QStringList{"goodness", "--model", "himm", "--rule", "himm"}
-                                        << "sonargrid-cli: missing --log";
+  QTest::newRow("goodness without log")
+      << QStringList{"goodness", "--model", "himm", "--rule", "himm"}
+      << "sonargrid-cli: missing --log";
 }
 
 void TstCli::scoreErrors() {
@@ -980,13 +1008,14 @@ void TstCli::scoreErrors() {
 }
 
 void TstCli::goodnessJson() {
-  const QStringList args = {"goodness", "--log", kRoomLog, "--model", "parameterized", "--rule",
-                            "bayes-recursive", "--json"};
+  const QStringList args = {"goodness",      "--log",  kRoomLog,          "--model",
+                            "parameterized", "--rule", "bayes-recursive", "--json"};
   const Run r = runCli(args);
   QVERIFY2(r.finished && r.code == 0 && r.err.isEmpty(), describe(args, r));
   const QJsonObject o = jsonOf(r.out);
   QCOMPARE(sorted(o.keys()), sorted(kGoodnessKeys));
-  // The model's values vary over a run, so some cell has σ > 0; σ of values in [0, 1] is at most 0.5.
+  // The model's values vary over a run, so some cell has σ > 0; σ of values in [0, 1] is at most
+  // 0.5.
   QVERIFY(o["vsdns"].toDouble() > 0 && o["vsdns"].toDouble() <= 0.5);
   QVERIFY(o["derivative_noise"].toDouble() > 0);
   QVERIFY(o["two_run_positive"].isNull() && o["two_run_negative"].isNull());
@@ -994,8 +1023,8 @@ void TstCli::goodnessJson() {
 
 void TstCli::goodnessTwoRuns() {
   // The same log twice: the two maps are identical, so every cell compared agrees.
-  const QStringList args = {"goodness", "--log", kRoomLog, "--second-log", kRoomLog, "--model", "murphy",
-                            "--rule", "bayes-recursive", "--json"};
+  const QStringList args = {"goodness", "--log",  kRoomLog, "--second-log",    kRoomLog,
+                            "--model",  "murphy", "--rule", "bayes-recursive", "--json"};
   const Run r = runCli(args);
   QVERIFY2(r.finished && r.code == 0, describe(args, r));
   const QJsonObject o = jsonOf(r.out);

@@ -13,8 +13,8 @@ using namespace sg;
 namespace {
 
 // A robot driving along a corridor whose walls are at y = ±1.2 m. Each sonar reports the nearest
-// wall point inside its 25° cone, as a sonar does: the perpendicular distance when the normal lies in
-// the cone, else the distance along the cone edge nearest the normal. Every fifth reading is a
+// wall point inside its 25° cone, as a sonar does: the perpendicular distance when the normal lies
+// in the cone, else the distance along the cone edge nearest the normal. Every fifth reading is a
 // no-echo. Odometry drifts from the truth by 1 mm per scan.
 Dataset corridor(int scans = 60) {
   Dataset d;
@@ -33,7 +33,8 @@ Dataset corridor(int scans = 60) {
       const double perpendicular = north ? 1.2 - sensor.y() : sensor.y() + 1.2;
       const double normal = north ? std::numbers::pi / 2 : -std::numbers::pi / 2;
       const double off = std::abs(wrapAngle(normal - h));
-      const double toNormal = off <= half ? 0.0 : off - half;  // cone direction closest to the normal
+      const double toNormal =
+          off <= half ? 0.0 : off - half;  // cone direction closest to the normal
       double range = perpendicular / std::cos(toNormal);
       if (toNormal > degToRad(60) || range >= d.ring.maxRange) range = Reading::kNoEcho;
       if ((k * 16 + i) % 5 == 0) range = Reading::kNoEcho;
@@ -54,8 +55,10 @@ std::vector<std::pair<std::string, std::string>> allPairs() {
 
 bool sameLayers(const OccupancyMap& a, const OccupancyMap& b) {
   // Bit-identical: compare the doubles' bytes, not their values within a tolerance.
-  return a.spec == b.spec && a.level == b.level && a.filled == b.filled && a.observed == b.observed &&
-         std::memcmp(a.probability.data(), b.probability.data(), a.probability.size() * sizeof(double)) == 0 &&
+  return a.spec == b.spec && a.level == b.level && a.filled == b.filled &&
+         a.observed == b.observed &&
+         std::memcmp(a.probability.data(), b.probability.data(),
+                     a.probability.size() * sizeof(double)) == 0 &&
          std::memcmp(a.native.data(), b.native.data(), a.native.size() * sizeof(double)) == 0;
 }
 
@@ -82,7 +85,8 @@ class TstMapper : public QObject {
 void TstMapper::batchEqualsIncremental_data() {
   QTest::addColumn<QString>("model");
   QTest::addColumn<QString>("rule");
-  for (const auto& [m, r] : allPairs()) QTest::newRow((m + "/" + r).c_str()) << QString::fromStdString(m) << QString::fromStdString(r);
+  for (const auto& [m, r] : allPairs())
+    QTest::newRow((m + "/" + r).c_str()) << QString::fromStdString(m) << QString::fromStdString(r);
 }
 
 void TstMapper::batchEqualsIncremental() {
@@ -120,7 +124,9 @@ const Dataset& room() {
   return d;
 }
 
-void TstMapper::parallelBatchEqualsIncremental_data() { batchEqualsIncremental_data(); }
+void TstMapper::parallelBatchEqualsIncremental_data() {
+  batchEqualsIncremental_data();
+}
 
 void TstMapper::parallelBatchEqualsIncremental() {
   QFETCH(QString, model);
@@ -258,9 +264,11 @@ void TstMapper::buildsWalls() {
     const Position c = grid.cellCentre(grid.fromLinear(i));
     const double fromWall = std::abs(std::abs(c.y()) - 1.2);
     QVERIFY2(fromWall <= 0.35, qPrintable(QString("filled cell at y = %1").arg(c.y())));
-    if (fromWall <= 0.025 + 1e-9 && c.x() > 1.0 && c.x() < 2.0) (c.y() > 0 ? north : south).insert(grid.fromLinear(i).x());
+    if (fromWall <= 0.025 + 1e-9 && c.x() > 1.0 && c.x() < 2.0)
+      (c.y() > 0 ? north : south).insert(grid.fromLinear(i).x());
   }
-  QVERIFY2(north.size() >= 15 && south.size() >= 15, qPrintable(QString("north %1 south %2").arg(north.size()).arg(south.size())));
+  QVERIFY2(north.size() >= 15 && south.size() >= 15,
+           qPrintable(QString("north %1 south %2").arg(north.size()).arg(south.size())));
 }
 
 void TstMapper::errors() {

@@ -40,7 +40,9 @@ sg::GridSpec grid(int w, int h, double cell = 0.1, double ox = 0.0, double oy = 
 }
 
 // A map where nothing was observed: p 0.5, level 8, nothing filled.
-sg::OccupancyMap blankMap(const sg::GridSpec& spec) { return sg::OccupancyMap::unobserved(spec); }
+sg::OccupancyMap blankMap(const sg::GridSpec& spec) {
+  return sg::OccupancyMap::unobserved(spec);
+}
 
 // Cells in linear order (iy = 0 first), space-separated; "-" is a never-observed cell.
 sg::OccupancyMap mapOf(const sg::GridSpec& spec, const QString& values) {

@@ -12,7 +12,8 @@ namespace {
 constexpr double kNoEcho = std::numeric_limits<double>::infinity();
 constexpr double kTol = 1e-4;
 
-std::unique_ptr<SensorModel> model(const char* name, std::initializer_list<std::pair<const char*, double>> set = {}) {
+std::unique_ptr<SensorModel> model(const char* name,
+                                   std::initializer_list<std::pair<const char*, double>> set = {}) {
   auto m = makeSensorModel(name);
   ParameterSet p(m->info().parameters);
   for (const auto& [k, v] : set) p.set(k, v);
@@ -61,8 +62,10 @@ static void check(const SensorModel& m, double maxRange = 5.0) {
   QCOMPARE(static_cast<int>(v.region), region);
   if (v.region == BeamRegion::Outside) return;
   QVERIFY2(std::abs(v.empty - pE) < kTol, qPrintable(QString("pE %1 vs %2").arg(v.empty).arg(pE)));
-  QVERIFY2(std::abs(v.occupied - pO) < kTol, qPrintable(QString("pO %1 vs %2").arg(v.occupied).arg(pO)));
-  QVERIFY2(std::abs(v.probability - p) < kTol, qPrintable(QString("P %1 vs %2").arg(v.probability).arg(p)));
+  QVERIFY2(std::abs(v.occupied - pO) < kTol,
+           qPrintable(QString("pO %1 vs %2").arg(v.occupied).arg(pO)));
+  QVERIFY2(std::abs(v.probability - p) < kTol,
+           qPrintable(QString("P %1 vs %2").arg(v.probability).arg(p)));
 }
 
 constexpr int kOut = static_cast<int>(BeamRegion::Outside);
@@ -88,27 +91,37 @@ void TstModels::hpf_data() {
   QTest::newRow("no echo") << 2.5 << 0.0 << kNoEcho << kEmp << 0.75 << 0.0 << 0.125;
 }
 
-void TstModels::hpf() { check(*model("hpf", {{"no_echo", 1.0}})); }
+void TstModels::hpf() {
+  check(*model("hpf", {{"no_echo", 1.0}}));
+}
 
 void TstModels::murphy_data() {
   addColumns();
   // R = 10, β = 15°, tolerance 0.5, Max_occ = 0.98, reading s = 6 (paper 002 eqs 1–4).
-  // Region I, r = 6, α = 5°: ((10−6)/10 + (15−5)/15)/2 · 0.98 = 0.533333 · 0.98 = 0.522667 (issue 2).
+  // Region I, r = 6, α = 5°: ((10−6)/10 + (15−5)/15)/2 · 0.98 = 0.533333 · 0.98 = 0.522667 (issue
+  // 2).
   QTest::newRow("issue example") << 6.0 << 5.0 << 6.0 << kOcc << 0.0 << 0.522667 << 0.522667;
-  // Region I edge, r = 6.4, α = 15°: (0.36 + 0)/2 · 0.98 = 0.1764 — below 0.5, the flaw paper 002 §3.2 shows.
+  // Region I edge, r = 6.4, α = 15°: (0.36 + 0)/2 · 0.98 = 0.1764 — below 0.5, the flaw paper 002
+  // §3.2 shows.
   QTest::newRow("region I corner") << 6.4 << 15.0 << 6.0 << kOcc << 0.0 << 0.1764 << 0.1764;
   // Region II, r = 3, α = 0: P(s|Emp) = (0.7 + 1)/2 = 0.85, P(s|Occ) = 0.15.
   QTest::newRow("region II axis") << 3.0 << 0.0 << 6.0 << kEmp << 0.85 << 0.0 << 0.15;
-  // Region II corner, r = 3, α = 15°: P(s|Emp) = 0.35, P(s|Occ) = 0.65 (paper 002 §3.2's red cells).
+  // Region II corner, r = 3, α = 15°: P(s|Emp) = 0.35, P(s|Occ) = 0.65 (paper 002 §3.2's red
+  // cells).
   QTest::newRow("region II corner") << 3.0 << 15.0 << 6.0 << kEmp << 0.35 << 0.0 << 0.65;
-  // r = 0.1: P(s|Emp) = (0.99 + 1)/2 = 0.995 → P(s|Occ) 0.005 clamped to 1 − 0.98; pE clamped to 0.98.
+  // r = 0.1: P(s|Emp) = (0.99 + 1)/2 = 0.995 → P(s|Occ) 0.005 clamped to 1 − 0.98; pE clamped to
+  // 0.98.
   QTest::newRow("clamped") << 0.1 << 0.0 << 6.0 << kEmp << 0.98 << 0.0 << 0.02;
   QTest::newRow("region III") << 7.0 << 0.0 << 6.0 << kOut << 0.0 << 0.0 << 0.5;
   QTest::newRow("outside cone") << 3.0 << 16.0 << 6.0 << kOut << 0.0 << 0.0 << 0.5;
 }
 
 void TstModels::murphy() {
-  check(*model("murphy", {{"max_range", 10.0}, {"beta", 15.0}, {"tolerance", 0.5}, {"max_occupied", 0.98}, {"no_echo", 1.0}}),
+  check(*model("murphy", {{"max_range", 10.0},
+                          {"beta", 15.0},
+                          {"tolerance", 0.5},
+                          {"max_occupied", 0.98},
+                          {"no_echo", 1.0}}),
         10.0);
 }
 
@@ -135,7 +148,9 @@ void TstModels::parameterized_data() {
 }
 
 void TstModels::parameterized() {
-  check(*model("parameterized", {{"p1", 0.02}, {"p2", 0.15}, {"p3", 0.5}, {"p4", 0.98}, {"p5", 15.0}, {"no_echo", 1.0}}));
+  check(*model(
+      "parameterized",
+      {{"p1", 0.02}, {"p2", 0.15}, {"p3", 0.5}, {"p4", 0.98}, {"p5", 15.0}, {"no_echo", 1.0}}));
 }
 
 void TstModels::konolige_data() {
@@ -162,7 +177,9 @@ void TstModels::konolige_data() {
   QTest::newRow("outside cone") << 1.0 << 13.0 << 1.0 << kOut << 0.0 << 0.0 << 0.5;
 }
 
-void TstModels::konolige() { check(*model("konolige", {{"no_echo", 1.0}})); }
+void TstModels::konolige() {
+  check(*model("konolige", {{"no_echo", 1.0}}));
+}
 
 void TstModels::himmAxis() {
   // Paper 000 §2.2: on a 10 × 3 grid of 0.1 m cells, a sensor at the centre of cell (0, 1) facing
@@ -228,12 +245,14 @@ void TstModels::evidenceAndProbabilityAgree() {
 void TstModels::declarationsAreComplete() {
   // The card's sliders exist under their names, and every declaration is usable as-is.
   QCOMPARE(sensorModelNames().size(), std::size_t{5});
-  for (const char* p : {"p1", "p2", "p3", "p4", "p5"}) QVERIFY(ParameterSet(sensorModelInfo("parameterized").parameters).has(p));
+  for (const char* p : {"p1", "p2", "p3", "p4", "p5"})
+    QVERIFY(ParameterSet(sensorModelInfo("parameterized").parameters).has(p));
   QVERIFY(ParameterSet(sensorModelInfo("hpf").parameters).has("epsilon"));
   QVERIFY(ParameterSet(sensorModelInfo("hpf").parameters).has("omega"));
   for (const std::string& name : sensorModelNames()) {
     for (const ParameterSpec& s : sensorModelInfo(name).parameters) {
-      QVERIFY2(s.min <= s.defaultValue && s.defaultValue <= s.max, qPrintable(QString::fromStdString(name + "." + s.name)));
+      QVERIFY2(s.min <= s.defaultValue && s.defaultValue <= s.max,
+               qPrintable(QString::fromStdString(name + "." + s.name)));
       QVERIFY(!s.source.empty() && !s.symbol.empty());
     }
   }

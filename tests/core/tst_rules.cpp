@@ -11,7 +11,8 @@ using namespace sg;
 namespace {
 constexpr double kTol = 1e-6;
 
-std::unique_ptr<UpdateRule> rule(const char* name, std::initializer_list<std::pair<const char*, double>> set = {},
+std::unique_ptr<UpdateRule> rule(const char* name,
+                                 std::initializer_list<std::pair<const char*, double>> set = {},
                                  std::size_t cells = 3) {
   auto r = makeUpdateRule(name);
   ParameterSet p(r->info().parameters);
@@ -27,13 +28,19 @@ Footprint fp(std::initializer_list<CellEvidence> cells) {
   f.cells.assign(cells.begin(), cells.end());
   return f;
 }
-CellEvidence empty(std::uint32_t cell, double pE) { return {cell, pE, 0.0, 0.5 - pE / 2}; }
-CellEvidence occupied(std::uint32_t cell, double pO) { return {cell, 0.0, pO, 0.5 + pO / 2}; }
+CellEvidence empty(std::uint32_t cell, double pE) {
+  return {cell, pE, 0.0, 0.5 - pE / 2};
+}
+CellEvidence occupied(std::uint32_t cell, double pO) {
+  return {cell, 0.0, pO, 0.5 + pO / 2};
+}
 CellEvidence likelihood(std::uint32_t cell, double p) {
   return {cell, p < 0.5 ? 1 - 2 * p : 0.0, p > 0.5 ? 2 * p - 1 : 0.0, p};
 }
 
-#define NEAR(a, b) QVERIFY2(std::abs((a) - (b)) < kTol, qPrintable(QString("%1 vs %2").arg(a, 0, 'g', 10).arg(b, 0, 'g', 10)))
+#define NEAR(a, b)                     \
+  QVERIFY2(std::abs((a) - (b)) < kTol, \
+           qPrintable(QString("%1 vs %2").arg(a, 0, 'g', 10).arg(b, 0, 'g', 10)))
 }  // namespace
 
 class TstRules : public QObject {
@@ -58,7 +65,8 @@ void TstRules::addition() {
   r->apply(fp({empty(0, 0.5)}));
   // Reading 2: occupied arc over cells 1 and 2 with pO 0.6 and 0.2 → normalised 0.75 and 0.25.
   r->apply(fp({occupied(1, 0.6), occupied(2, 0.2)}));
-  // Reading 3: cell 1 pE = 0.5 → Emp1 = 0.5; cell 0 pE = 0.5 again → Emp0 = 0.5 + 0.5 − 0.25 = 0.75.
+  // Reading 3: cell 1 pE = 0.5 → Emp1 = 0.5; cell 0 pE = 0.5 again → Emp0 = 0.5 + 0.5 − 0.25 =
+  // 0.75.
   r->apply(fp({empty(0, 0.5), empty(1, 0.5)}));
   NEAR(r->native(0), -0.75);  // Occ 0 < Emp 0.75 → −Emp
   NEAR(r->occupancy(0), 0.125);
@@ -114,8 +122,8 @@ void TstRules::bayesRecursive() {
 void TstRules::logUpdate() {
   // Paper 001 §3.3 as notes fix it: Map = log10(Emp) + log10(Occ), cut to [−2, 2].
   auto r = rule("log");
-  r->apply(fp({empty(0, 0.5)}));     // log10 0.5 = −0.301030
-  r->apply(fp({occupied(0, 0.8)}));  // log10 1.8 = 0.255273
+  r->apply(fp({empty(0, 0.5)}));                          // log10 0.5 = −0.301030
+  r->apply(fp({occupied(0, 0.8)}));                       // log10 1.8 = 0.255273
   NEAR(r->native(0), std::log10(0.5) + std::log10(1.8));  // −0.045757
   NEAR(r->occupancy(0), 0.5 - 0.5 * 0.0457575 / 2.0);     // 0.488561
   QVERIFY(!r->filled(0));
@@ -135,7 +143,8 @@ void TstRules::logOdds() {
   auto r = rule("logodds");
   r->apply(fp({likelihood(0, 0.7)}));  // logit 0.7 = 0.847298
   NEAR(r->native(0), std::log(0.7 / 0.3));
-  for (int i = 0; i < 4; ++i) r->apply(fp({likelihood(0, 0.7)}));  // 5 · 0.847298 = 4.236 > 3.476099
+  for (int i = 0; i < 4; ++i)
+    r->apply(fp({likelihood(0, 0.7)}));  // 5 · 0.847298 = 4.236 > 3.476099
   NEAR(r->native(0), std::log(0.97 / 0.03));
   NEAR(r->occupancy(0), 0.97);
   r->apply(fp({likelihood(0, 0.4)}));  // 3.476099 − 0.405465 = 3.070634 → p = 0.955696
@@ -168,7 +177,8 @@ void TstRules::dempsterShafer() {
   auto r = rule("dempster-shafer");
   r->apply(fp({occupied(0, 0.6)}));  // m = (0.6, 0, 0.4)
   NEAR(r->native(0), 0.6);
-  // Evidence (0, 0.5, 0.5): K = 0.6·0.5 = 0.3; m(occ) = 0.3/0.7, m(emp) = 0.2/0.7, m(unk) = 0.2/0.7.
+  // Evidence (0, 0.5, 0.5): K = 0.6·0.5 = 0.3; m(occ) = 0.3/0.7, m(emp) = 0.2/0.7, m(unk) =
+  // 0.2/0.7.
   r->apply(fp({empty(0, 0.5)}));
   NEAR(r->native(0), 0.1 / 0.7);
   NEAR(r->occupancy(0), 0.3 / 0.7 + 0.1 / 0.7);  // pignistic 0.571429

@@ -12,8 +12,8 @@
 namespace sg {
 
 struct PngOptions {
-  int scale = 1;         // pixels per cell
-  bool legend = false;   // a strip with the 16 levels and their numbers below the map
+  int scale = 1;        // pixels per cell
+  bool legend = false;  // a strip with the 16 levels and their numbers below the map
   const LevelPalette* palette = nullptr;  // nullptr: defaultLevelPalette()
 };
 

@@ -1,6 +1,7 @@
 #pragma once
-// The native `.sglog` log: text, versioned header, SI units, the robot and its sonar geometry in the
-// header. docs/formats.md is the specification; write followed by read gives back an equal Dataset.
+// The native `.sglog` log: text, versioned header, SI units, the robot and its sonar geometry in
+// the header. docs/formats.md is the specification; write followed by read gives back an equal
+// Dataset.
 
 #include <iosfwd>
 #include <string>

@@ -12,20 +12,22 @@ namespace sg {
 // for any point, and inside(double, double) for points the rasteriser already placed within the
 // reach and the half-angle (the same value without those two tests).
 template <class Prepared>
-void coneFootprint(const Prepared& pb, const Beam& beam, const GridSpec& grid, const BeamTables& tables,
-                   Footprint& out) {
+void coneFootprint(const Prepared& pb, const Beam& beam, const GridSpec& grid,
+                   const BeamTables& tables, Footprint& out) {
   if (!pb.active) return;
   const std::size_t start = out.cells.size();
   CellEvidence* dst = nullptr;
   forEachConeCell(
       beam.sensor, pb.reach, pb.halfAngle, grid, tables,
       [&](std::size_t bound) {
-        out.cells.resize(start + bound);  // leaves the new entries unwritten (UninitialisedAllocator)
+        out.cells.resize(start +
+                         bound);  // leaves the new entries unwritten (UninitialisedAllocator)
         dst = out.cells.data() + start;
       },
       [&](std::uint32_t cell, double delta, double theta) {
         const ModelValue v = pb.inside(delta, theta);
-        if (v.region != BeamRegion::Outside) *dst++ = CellEvidence{cell, v.empty, v.occupied, v.probability};
+        if (v.region != BeamRegion::Outside)
+          *dst++ = CellEvidence{cell, v.empty, v.occupied, v.probability};
       });
   out.cells.resize(dst ? static_cast<std::size_t>(dst - out.cells.data()) : start);
 }

@@ -24,9 +24,12 @@ namespace detail {
 
 // Narrows [lo, hi] to the x with a * x <= b.
 inline void clip(double a, double b, double& lo, double& hi) {
-  if (a > 0.0) hi = std::min(hi, b / a);
-  else if (a < 0.0) lo = std::max(lo, b / a);
-  else if (b < 0.0) hi = -std::numeric_limits<double>::infinity();
+  if (a > 0.0)
+    hi = std::min(hi, b / a);
+  else if (a < 0.0)
+    lo = std::max(lo, b / a);
+  else if (b < 0.0)
+    hi = -std::numeric_limits<double>::infinity();
 }
 
 }  // namespace detail
@@ -69,7 +72,8 @@ void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const
 
   const int r = tables.radius();
   const int dy0 = std::max({-r, static_cast<int>(std::floor(ay - 0.5 - R)) - 1, -iv});
-  const int dy1 = std::min({r, static_cast<int>(std::ceil(ay - 0.5 + R)) + 1, grid.height - 1 - iv});
+  const int dy1 =
+      std::min({r, static_cast<int>(std::ceil(ay - 0.5 + R)) + 1, grid.height - 1 - iv});
   // Per thread, so workers never share it; fn must not call forEachConeCell itself.
   thread_local std::vector<ConeSpan> spans;
   spans.clear();
@@ -110,23 +114,28 @@ void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const
         if (e.distance > reachF) continue;
         double theta = static_cast<double>(e.bearing) - h;
         if constexpr (decltype(wrap)::value) {
-          if (theta > kPi) theta -= 2.0 * kPi;
-          else if (theta < -kPi) theta += 2.0 * kPi;
+          if (theta > kPi)
+            theta -= 2.0 * kPi;
+          else if (theta < -kPi)
+            theta += 2.0 * kPi;
         }
         if (std::abs(theta) > halfAngle) continue;
         fn(rowBase + static_cast<std::uint32_t>(dx), static_cast<double>(e.distance), theta);
       }
     }
   };
-  if (crossesPi) walk(std::true_type{});
-  else walk(std::false_type{});
+  if (crossesPi)
+    walk(std::true_type{});
+  else
+    walk(std::false_type{});
 }
 
 // Without a bound: for callers that only count or collect cells.
 template <class Fn>
 void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const GridSpec& grid,
                      const BeamTables& tables, Fn&& fn) {
-  forEachConeCell(sensor, reach, halfAngle, grid, tables, [](std::size_t) {}, std::forward<Fn>(fn));
+  forEachConeCell(
+      sensor, reach, halfAngle, grid, tables, [](std::size_t) {}, std::forward<Fn>(fn));
 }
 
 }  // namespace sg

@@ -17,10 +17,14 @@ const ModelInfo& HimmModel::staticInfo() {
       "HIMM acoustic-axis model",
       "paper 000 §2.2",
       {
-          {"p_hit", "p_hit", "", 0.5, 1.0, 0.7, "OctoMap default (AbstractOccupancyOcTree: hit 0.7)",
-           "P(occ | reading) of the echo cell for the probabilistic rules; the himm rule only needs it above 0.5."},
-          {"p_miss", "p_miss", "", 0.0, 0.5, 0.4, "OctoMap default (AbstractOccupancyOcTree: miss 0.4)",
-           "P(occ | reading) of the axis cells before the echo; the himm rule only needs it below 0.5."},
+          {"p_hit", "p_hit", "", 0.5, 1.0, 0.7,
+           "OctoMap default (AbstractOccupancyOcTree: hit 0.7)",
+           "P(occ | reading) of the echo cell for the probabilistic rules; the himm rule only "
+           "needs it above 0.5."},
+          {"p_miss", "p_miss", "", 0.0, 0.5, 0.4,
+           "OctoMap default (AbstractOccupancyOcTree: miss 0.4)",
+           "P(occ | reading) of the axis cells before the echo; the himm rule only needs it below "
+           "0.5."},
           noEchoParameter("free evidence on every axis cell up to the maximum range"),
       }};
   return info;
@@ -46,9 +50,12 @@ ModelValue HimmModel::evaluate(double delta, double theta, double range, double 
   return {};
 }
 
-double HimmModel::reach(double maxRange) const { return maxRange; }
+double HimmModel::reach(double maxRange) const {
+  return maxRange;
+}
 
-void HimmModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& /*tables*/, Footprint& out) const {
+void HimmModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& /*tables*/,
+                          Footprint& out) const {
   const bool echo = beam.echo();
   if (!echo && !noEchoFree_) return;
   const double length = echo ? beam.range : beam.maxRange;
@@ -77,7 +84,8 @@ void HimmModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTabl
 
   auto emit = [&](int x, int y, const ModelValue& v) {
     if (x < 0 || y < 0 || x >= grid.width || y >= grid.height) return;
-    out.cells.push_back(CellEvidence{static_cast<std::uint32_t>(y * grid.width + x), v.empty, v.occupied, v.probability});
+    out.cells.push_back(CellEvidence{static_cast<std::uint32_t>(y * grid.width + x), v.empty,
+                                     v.occupied, v.probability});
   };
   for (int k = 0; k < steps; ++k) {
     emit(ix, iy, miss);

@@ -14,14 +14,14 @@ struct HpfBeam {
   bool active = false;
   double reach = 0.0;
   double halfAngle = 0.0;
-  double range = 0.0;        // R, or the maximum range for a no-echo reading
+  double range = 0.0;  // R, or the maximum range for a no-echo reading
   bool echo = true;
   double epsilon = 0.0;
   double invEpsilon = 0.0;
   double rMin = 0.0;
-  double invEmptySpan = 0.0; // 1 / (R - ε - R_min); 0 when the empty region is empty
-  double emptyEnd = 0.0;     // R - ε
-  double invHalfAngle = 0.0; // 2 / ω
+  double invEmptySpan = 0.0;  // 1 / (R - ε - R_min); 0 when the empty region is empty
+  double emptyEnd = 0.0;      // R - ε
+  double invHalfAngle = 0.0;  // 2 / ω
 
   ModelValue at(double delta, double theta) const {
     if (std::abs(theta) > halfAngle || delta > reach) return {};
@@ -50,13 +50,15 @@ const ModelInfo& HpfModel::staticInfo() {
       "Moravec–Elfes heuristic probability functions (HPF, 2-D Gaussian)",
       "paper 000 §2.1 eqs 1–6; paper 001 §2.1",
       {
-          {"epsilon", "ε", "m", 0.005, 1.0, 0.10, "paper 000 eqs 2, 5 (ε: mean sonar deviation error)",
+          {"epsilon", "ε", "m", 0.005, 1.0, 0.10,
+           "paper 000 eqs 2, 5 (ε: mean sonar deviation error)",
            "Half-width of the occupied arc; the empty region ends at R − ε."},
           {"omega", "ω", "deg", 5.0, 90.0, 25.0, "paper 000 eqs 3, 6 (ω: beam aperture)",
            "Full cone angle; Ea = Oa = 1 − (2θ/ω)²."},
           {"r_min", "R_min", "m", 0.0, 1.0, 0.0, "paper 000 eq 2 (R_min)",
            "Distance from the transducer where the empty region starts."},
-          noEchoParameter("free space along the cone up to the maximum range (Er with R − ε = R_max)"),
+          noEchoParameter(
+              "free space along the cone up to the maximum range (Er with R − ε = R_max)"),
       }};
   return info;
 }
@@ -69,7 +71,8 @@ void HpfModel::configure(const ParameterSet& p) {
 }
 
 namespace {
-HpfBeam prepareHpf(double range, double maxRange, double epsilon, double omega, double rMin, bool noEchoFree) {
+HpfBeam prepareHpf(double range, double maxRange, double epsilon, double omega, double rMin,
+                   bool noEchoFree) {
   HpfBeam b;
   b.echo = std::isfinite(range);
   if (!b.echo && !noEchoFree) return b;
@@ -100,10 +103,14 @@ ModelValue HpfModel::evaluate(double delta, double theta, double range, double m
   return prepareHpf(range, maxRange, epsilon_, omega_, rMin_, noEchoFree_).at(delta, theta);
 }
 
-double HpfModel::reach(double maxRange) const { return maxRange + epsilon_; }
+double HpfModel::reach(double maxRange) const {
+  return maxRange + epsilon_;
+}
 
-void HpfModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables, Footprint& out) const {
-  coneFootprint(prepareHpf(beam.range, beam.maxRange, epsilon_, omega_, rMin_, noEchoFree_), beam, grid, tables, out);
+void HpfModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+                         Footprint& out) const {
+  coneFootprint(prepareHpf(beam.range, beam.maxRange, epsilon_, omega_, rMin_, noEchoFree_), beam,
+                grid, tables, out);
 }
 
 }  // namespace sg

@@ -38,7 +38,8 @@ class NormalTable {
   NormalTable() {
     for (int i = 0; i <= kIntervals + 1; ++i) {
       const double z = -kZMax + std::min(i, kIntervals) / kScale;
-      pdf_[static_cast<std::size_t>(i)] = std::exp(-0.5 * z * z) / std::sqrt(2.0 * std::numbers::pi);
+      pdf_[static_cast<std::size_t>(i)] =
+          std::exp(-0.5 * z * z) / std::sqrt(2.0 * std::numbers::pi);
       cdf_[static_cast<std::size_t>(i)] = 0.5 * std::erfc(-z / std::numbers::sqrt2);
     }
   }
@@ -65,7 +66,8 @@ const NormalTable& normalTable() {
 // λ to the Footprint's three values: P = λ/(1 + λ), pO = 2P − 1 = (λ − 1)/(λ + 1), pE = −that.
 ModelValue fromLikelihoodRatio(double lambda) {
   const double inv = 1.0 / (1.0 + lambda);
-  if (lambda > 1.0) return ModelValue{BeamRegion::Occupied, 0.0, (lambda - 1.0) * inv, lambda * inv};
+  if (lambda > 1.0)
+    return ModelValue{BeamRegion::Occupied, 0.0, (lambda - 1.0) * inv, lambda * inv};
   return ModelValue{BeamRegion::Empty, (1.0 - lambda) * inv, 0.0, lambda * inv};
 }
 
@@ -104,25 +106,32 @@ struct KonoligeBeam {
 
 }  // namespace
 
-KonoligeModel::KonoligeModel() { configure(ParameterSet(staticInfo().parameters)); }
+KonoligeModel::KonoligeModel() {
+  configure(ParameterSet(staticInfo().parameters));
+}
 
 const ModelInfo& KonoligeModel::staticInfo() {
   static const ModelInfo info{
       "konolige",
       "Konolige multiple-target model",
-      "paper 001 §2.2 (after Konolige 1997); likelihood-ratio reading of notes/models-and-metrics.md",
+      "paper 001 §2.2 (after Konolige 1997); likelihood-ratio reading of "
+      "notes/models-and-metrics.md",
       {
           {"omega", "ω", "deg", 5.0, 90.0, 25.0, "paper 001 §2.2 (lobe width follows the aperture)",
            "Full cone angle; the angular lobe is a Gaussian of σ = ω/2, cut at ±ω/2."},
           {"false_rate", "F", "1/m", 0.001, 1.0, 0.05, "paper 001 §2.2 (F = 0.05)",
            "Density of false returns; keeps the occupied likelihood ratio finite."},
-          {"attenuation", "a₀", "", 0.0, 1.0, 0.6, "paper 001 §2.2: a(r) = 0.6 (1 − min(1, 0.4 r)), a₀ = 0.6",
+          {"attenuation", "a₀", "", 0.0, 1.0, 0.6,
+           "paper 001 §2.2: a(r) = 0.6 (1 − min(1, 0.4 r)), a₀ = 0.6",
            "Detection probability of an occupied cell at the transducer."},
-          {"attenuation_slope", "k", "1/m", 0.0, 5.0, 0.4, "paper 001 §2.2: a(r) = 0.6 (1 − min(1, 0.4 r)), k = 0.4 /m",
+          {"attenuation_slope", "k", "1/m", 0.0, 5.0, 0.4,
+           "paper 001 §2.2: a(r) = 0.6 (1 − min(1, 0.4 r)), k = 0.4 /m",
            "a(r) falls to 0 at r = 1/k (2.5 m in the paper)."},
-          {"range_sd0", "d₀", "m", 0.001, 0.5, 0.01, "paper 001 §2.2: d(r) = 0.01 + 0.015 r, d₀ = 0.01 m",
+          {"range_sd0", "d₀", "m", 0.001, 0.5, 0.01,
+           "paper 001 §2.2: d(r) = 0.01 + 0.015 r, d₀ = 0.01 m",
            "Fixed part of the range deviation (a standard deviation)."},
-          {"range_sd1", "d₁", "m/m", 0.0, 0.19, 0.015, "paper 001 §2.2: d(r) = 0.01 + 0.015 r, d₁ = 0.015",
+          {"range_sd1", "d₁", "m/m", 0.0, 0.19, 0.015,
+           "paper 001 §2.2: d(r) = 0.01 + 0.015 r, d₁ = 0.015",
            "Growth of the range standard deviation per metre of range."},
           noEchoParameter("λ = 1 − g(r, θ) over the cone up to the detection range"),
       }};
@@ -138,12 +147,13 @@ void KonoligeModel::configure(const ParameterSet& p) {
   s_.sd1 = p.get("range_sd1");
   s_.noEchoFree = p.get("no_echo") != 0.0;
   const double sigma = s_.omega / 2.0;
-  lobe_ = SampledFunction(0.0, s_.omega / 2.0, 1024, [sigma](double t) { return std::exp(-t * t / (2.0 * sigma * sigma)); });
+  lobe_ = SampledFunction(0.0, s_.omega / 2.0, 1024,
+                          [sigma](double t) { return std::exp(-t * t / (2.0 * sigma * sigma)); });
 }
 
 namespace {
-KonoligeBeam prepareKonolige(const KonoligeModel::Settings& s, const SampledFunction& lobe, double range,
-                             double maxRange) {
+KonoligeBeam prepareKonolige(const KonoligeModel::Settings& s, const SampledFunction& lobe,
+                             double range, double maxRange) {
   KonoligeBeam b;
   b.echo = std::isfinite(range);
   if (!b.echo && !s.noEchoFree) return b;
@@ -163,7 +173,8 @@ KonoligeBeam prepareKonolige(const KonoligeModel::Settings& s, const SampledFunc
 }
 }  // namespace
 
-ModelValue KonoligeModel::evaluate(double delta, double theta, double range, double maxRange) const {
+ModelValue KonoligeModel::evaluate(double delta, double theta, double range,
+                                   double maxRange) const {
   return prepareKonolige(s_, lobe_, range, maxRange).at(delta, theta);
 }
 
@@ -173,7 +184,8 @@ double KonoligeModel::reach(double maxRange) const {
   return r;
 }
 
-void KonoligeModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables, Footprint& out) const {
+void KonoligeModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+                              Footprint& out) const {
   coneFootprint(prepareKonolige(s_, lobe_, beam.range, beam.maxRange), beam, grid, tables, out);
 }
 

@@ -46,8 +46,8 @@ struct MurphyBeam {
   }
 };
 
-MurphyBeam prepareMurphy(double range, double maxRange, double R, double beta, double tolerance, double maxOcc,
-                         bool noEchoFree) {
+MurphyBeam prepareMurphy(double range, double maxRange, double R, double beta, double tolerance,
+                         double maxOcc, bool noEchoFree) {
   MurphyBeam b;
   b.echo = std::isfinite(range);
   if (!b.echo && !noEchoFree) return b;
@@ -72,7 +72,8 @@ const ModelInfo& MurphyModel::staticInfo() {
       "paper 002 §3.1 eqs 1–4 (after Murphy 2000)",
       {
           {"max_range", "R", "m", 0.5, 20.0, 5.0, "paper 002 eqs 1, 4 (R: maximum sensing range)",
-           "R in eqs 1 and 4: the distance term (R − r)/R falls to 0 here; separate from the log's range."},
+           "R in eqs 1 and 4: the distance term (R − r)/R falls to 0 here; separate from the log's "
+           "range."},
           {"beta", "β", "deg", 1.0, 45.0, 15.0, "paper 002 eqs 1, 4 (β: half the cone width)",
            "Half-width of the cone."},
           {"tolerance", "tol", "m", 0.005, 2.0, 0.10, "paper 002 §3.1 (thickness of Region I)",
@@ -93,13 +94,18 @@ void MurphyModel::configure(const ParameterSet& p) {
 }
 
 ModelValue MurphyModel::evaluate(double delta, double theta, double range, double maxRange) const {
-  return prepareMurphy(range, maxRange, maxRange_, beta_, tolerance_, maxOccupied_, noEchoFree_).at(delta, theta);
+  return prepareMurphy(range, maxRange, maxRange_, beta_, tolerance_, maxOccupied_, noEchoFree_)
+      .at(delta, theta);
 }
 
-double MurphyModel::reach(double maxRange) const { return std::max(maxRange, maxRange_) + tolerance_; }
+double MurphyModel::reach(double maxRange) const {
+  return std::max(maxRange, maxRange_) + tolerance_;
+}
 
-void MurphyModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables, Footprint& out) const {
-  coneFootprint(prepareMurphy(beam.range, beam.maxRange, maxRange_, beta_, tolerance_, maxOccupied_, noEchoFree_),
+void MurphyModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+                            Footprint& out) const {
+  coneFootprint(prepareMurphy(beam.range, beam.maxRange, maxRange_, beta_, tolerance_, maxOccupied_,
+                              noEchoFree_),
                 beam, grid, tables, out);
 }
 

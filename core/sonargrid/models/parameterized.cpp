@@ -21,8 +21,8 @@ struct ParameterizedBeam {
   double reach = 0.0;
   double halfAngle = 0.0;  // P5 in radians
   double invHalfAngle = 0.0;
-  double emptyEnd = 0.0;   // s − P3, or the maximum range without an echo
-  double emptySlope = 0.0; // (0.5 − P2 − P1) / emptyEnd
+  double emptyEnd = 0.0;    // s − P3, or the maximum range without an echo
+  double emptySlope = 0.0;  // (0.5 − P2 − P1) / emptyEnd
   double s = 0.0, p1 = 0.0, p2 = 0.0, p3 = 0.0, p4 = 0.0;
   double tentSlope = 0.0;  // (P4 − 0.5 − P2) / P3
   bool echo = true;
@@ -50,8 +50,8 @@ struct ParameterizedBeam {
   }
 };
 
-ParameterizedBeam prepareParameterized(double range, double maxRange, double p1, double p2, double p3, double p4,
-                                       double p5, bool noEchoFree) {
+ParameterizedBeam prepareParameterized(double range, double maxRange, double p1, double p2,
+                                       double p3, double p4, double p5, bool noEchoFree) {
   ParameterizedBeam b;
   b.echo = std::isfinite(range);
   if (!b.echo && !noEchoFree) return b;
@@ -83,15 +83,18 @@ const ModelInfo& ParameterizedModel::staticInfo() {
       {
           {"p1", "P1", "", 0.0, 0.5, 0.02, "paper 002 §4 (P1: minimum probability in Region II)",
            "Value at the transducer on the axis; the paper often ties P1 = 1 − P4."},
-          {"p2", "P2", "", 0.0, 0.5, 0.15, "paper 002 §4 (P2: gap around 0.5 between Regions I and II)",
+          {"p2", "P2", "", 0.0, 0.5, 0.15,
+           "paper 002 §4 (P2: gap around 0.5 between Regions I and II)",
            "Region II ends at 0.5 − P2, Region I starts at 0.5 + P2."},
           {"p3", "P3", "m", 0.005, 3.0, 0.10, "paper 002 §4 (P3: tolerance of Region I)",
            "Half-width of Region I around the reading."},
           {"p4", "P4", "", 0.5, 1.0, 0.98, "paper 002 §4 (P4: maximum probability of occupancy)",
            "Peak of Region I at the reading."},
-          {"p5", "P5", "deg", 1.0, 45.0, 15.0, "paper 002 eq 7 (P5: half-width of the view of focus)",
+          {"p5", "P5", "deg", 1.0, 45.0, 15.0,
+           "paper 002 eq 7 (P5: half-width of the view of focus)",
            "Half-width of the cone; values fall linearly to 0.5 at ±P5."},
-          noEchoParameter("Region II (P1 rising to 0.5 − P2) over the cone up to the maximum range"),
+          noEchoParameter(
+              "Region II (P1 rising to 0.5 − P2) over the cone up to the maximum range"),
       }};
   return info;
 }
@@ -105,16 +108,21 @@ void ParameterizedModel::configure(const ParameterSet& p) {
   noEchoFree_ = p.get("no_echo") != 0.0;
 }
 
-ModelValue ParameterizedModel::evaluate(double delta, double theta, double range, double maxRange) const {
-  return prepareParameterized(range, maxRange, p1_, p2_, p3_, p4_, p5_, noEchoFree_).at(delta, theta);
+ModelValue ParameterizedModel::evaluate(double delta, double theta, double range,
+                                        double maxRange) const {
+  return prepareParameterized(range, maxRange, p1_, p2_, p3_, p4_, p5_, noEchoFree_)
+      .at(delta, theta);
 }
 
-double ParameterizedModel::reach(double maxRange) const { return maxRange + p3_; }
+double ParameterizedModel::reach(double maxRange) const {
+  return maxRange + p3_;
+}
 
 void ParameterizedModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
                                    Footprint& out) const {
-  coneFootprint(prepareParameterized(beam.range, beam.maxRange, p1_, p2_, p3_, p4_, p5_, noEchoFree_), beam, grid,
-                tables, out);
+  coneFootprint(
+      prepareParameterized(beam.range, beam.maxRange, p1_, p2_, p3_, p4_, p5_, noEchoFree_), beam,
+      grid, tables, out);
 }
 
 }  // namespace sg

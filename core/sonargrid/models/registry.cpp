@@ -9,20 +9,34 @@ ParameterSpec noEchoParameter(const std::string& freeMeaning) {
   // Default 0: a sonar that hears nothing has most often been reflected away by a surface seen at a
   // glancing angle (paper 000 §1, "specular reflections"), and clearing its whole cone erases the
   // very walls it missed. Turn it on for diffuse surroundings.
-  return ParameterSpec{"no_echo", "—", "", 0.0, 1.0, 0.0,
-                       "project choice; off by default because of specular reflections (paper 000 §1)",
-                       "1: a reading with no echo gives " + freeMeaning + "; 0: it is skipped.", true};
+  return ParameterSpec{
+      "no_echo",
+      "—",
+      "",
+      0.0,
+      1.0,
+      0.0,
+      "project choice; off by default because of specular reflections (paper 000 §1)",
+      "1: a reading with no echo gives " + freeMeaning + "; 0: it is skipped.",
+      true};
 }
 
-std::vector<std::string> sensorModelNames() { return {"hpf", "konolige", "murphy", "parameterized", "himm"}; }
+std::vector<std::string> sensorModelNames() {
+  return {"hpf", "konolige", "murphy", "parameterized", "himm"};
+}
 
 std::unique_ptr<SensorModel> makeSensorModel(const std::string& name) {
   std::unique_ptr<SensorModel> m;
-  if (name == "hpf") m = std::make_unique<HpfModel>();
-  else if (name == "konolige") m = std::make_unique<KonoligeModel>();
-  else if (name == "murphy") m = std::make_unique<MurphyModel>();
-  else if (name == "parameterized") m = std::make_unique<ParameterizedModel>();
-  else if (name == "himm") m = std::make_unique<HimmModel>();
+  if (name == "hpf")
+    m = std::make_unique<HpfModel>();
+  else if (name == "konolige")
+    m = std::make_unique<KonoligeModel>();
+  else if (name == "murphy")
+    m = std::make_unique<MurphyModel>();
+  else if (name == "parameterized")
+    m = std::make_unique<ParameterizedModel>();
+  else if (name == "himm")
+    m = std::make_unique<HimmModel>();
   if (m) m->configure(ParameterSet(m->info().parameters));
   return m;
 }

@@ -14,7 +14,10 @@ class SampledFunction {
  public:
   SampledFunction() = default;
   SampledFunction(double x0, double x1, int intervals, const std::function<double(double)>& f)
-      : x0_(x0), x1_(x1), scale_(intervals / (x1 - x0)), samples_(static_cast<std::size_t>(intervals) + 2) {
+      : x0_(x0),
+        x1_(x1),
+        scale_(intervals / (x1 - x0)),
+        samples_(static_cast<std::size_t>(intervals) + 2) {
     for (std::size_t i = 0; i < samples_.size(); ++i) {
       samples_[i] = f(x0 + std::min<double>(static_cast<double>(i), intervals) / scale_);
     }

@@ -14,9 +14,9 @@
 namespace sg {
 
 struct ModelInfo {
-  std::string name;   // registry and CLI name, e.g. "hpf"
-  std::string title;  // e.g. "Moravec–Elfes heuristic probability functions (HPF)"
-  std::string source; // paper and section
+  std::string name;    // registry and CLI name, e.g. "hpf"
+  std::string title;   // e.g. "Moravec–Elfes heuristic probability functions (HPF)"
+  std::string source;  // paper and section
   std::vector<ParameterSpec> parameters;
 };
 

@@ -9,9 +9,9 @@ const RuleInfo& AdditionRule::staticInfo() {
       "paper 000 eqs 7–8; paper 001 §3.1",
       "combined Occ/Emp value (−1..1 for paper 000, 0..1 for paper 001)",
       {
-          {"combine", "combine", "", 0.0, 1.0, 0.0,
-           "paper 000 eqs 7–8 (0) or paper 001 §3.1 (1)",
-           "0: Occ if Occ ≥ Emp else −Emp (range −1..1); 1: Occ if Occ > Emp, 1 − Emp if Emp > Occ, 0.5 on a tie.",
+          {"combine", "combine", "", 0.0, 1.0, 0.0, "paper 000 eqs 7–8 (0) or paper 001 §3.1 (1)",
+           "0: Occ if Occ ≥ Emp else −Emp (range −1..1); 1: Occ if Occ > Emp, 1 − Emp if Emp > "
+           "Occ, 0.5 on a tie.",
            true},
           {"normalise", "norm", "", 0.0, 1.0, 1.0, "paper 001 §3.1 (Po ← Po / ΣPo)",
            "1: each reading's occupied evidence is scaled to sum to 1 over its arc.", true},

@@ -8,28 +8,39 @@ ParameterSpec priorSpec(const std::string& source) {
 }  // namespace
 
 const RuleInfo& BayesRule::evidenceInfo() {
-  static const RuleInfo info{"bayes", "Bayesian update (paper 001)", "paper 001 §3.2", "p(occupied)",
+  static const RuleInfo info{"bayes",
+                             "Bayesian update (paper 001)",
+                             "paper 001 §3.2",
+                             "p(occupied)",
                              {priorSpec("paper 001 §3.2 (0.5: no information)")}};
   return info;
 }
 
 const RuleInfo& BayesRule::likelihoodInfo() {
-  static const RuleInfo info{"bayes-recursive", "Recursive Bayes (paper 002)",
-                             "paper 002 eqs 5–6 (standard recursive form; notes/models-and-metrics.md)",
-                             "p(occupied)", {priorSpec("paper 002 eq 5 (P(H))")}};
+  static const RuleInfo info{
+      "bayes-recursive",
+      "Recursive Bayes (paper 002)",
+      "paper 002 eqs 5–6 (standard recursive form; notes/models-and-metrics.md)",
+      "p(occupied)",
+      {priorSpec("paper 002 eq 5 (P(H))")}};
   return info;
 }
 
-void BayesRule::configure(const ParameterSet& p) { prior_ = p.get("prior"); }
+void BayesRule::configure(const ParameterSet& p) {
+  prior_ = p.get("prior");
+}
 
-void BayesRule::reset(std::size_t cells) { map_.assign(cells, prior_); }
+void BayesRule::reset(std::size_t cells) {
+  map_.assign(cells, prior_);
+}
 
 void BayesRule::apply(const Footprint& fp) {
   for (const CellEvidence& c : fp.cells) {
     // Paper 001 maps evidence to [0, 0.5] (empty) and [0.5, 1] (occupied): P = 0.5 + (pO − pE)/2.
-    const double p = input_ == Input::Evidence
-                         ? 0.5 + 0.5 * (static_cast<double>(c.occupied) - static_cast<double>(c.empty))
-                         : static_cast<double>(c.probability);
+    const double p =
+        input_ == Input::Evidence
+            ? 0.5 + 0.5 * (static_cast<double>(c.occupied) - static_cast<double>(c.empty))
+            : static_cast<double>(c.probability);
     double& m = map_[c.cell];
     const double num = p * m;
     const double den = num + (1.0 - p) * (1.0 - m);

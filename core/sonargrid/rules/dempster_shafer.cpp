@@ -13,8 +13,11 @@
 namespace sg {
 
 const RuleInfo& DempsterShaferRule::staticInfo() {
-  static const RuleInfo info{"dempster-shafer", "Dempster–Shafer", "Murphy 2000 §11.4 (Dempster's rule of combination)",
-                             "m(occ) − m(emp)", {}};
+  static const RuleInfo info{"dempster-shafer",
+                             "Dempster–Shafer",
+                             "Murphy 2000 §11.4 (Dempster's rule of combination)",
+                             "m(occ) − m(emp)",
+                             {}};
   return info;
 }
 

@@ -8,16 +8,18 @@
 namespace sg {
 
 const RuleInfo& HimmRule::staticInfo() {
-  static const RuleInfo info{
-      "himm",
-      "HIMM histogram",
-      "paper 000 §2.2",
-      "certainty value CV (0..15)",
-      {
-          {"increment", "I⁺", "", 1.0, 15.0, 3.0, "paper 000 §2.2 (I⁺ = 3)", "Added to the echo cell.", true},
-          {"decrement", "I⁻", "", 0.0, 15.0, 1.0, "paper 000 §2.2 (I⁻ = 1)", "Taken from each cell before the echo.", true},
-          {"cv_max", "CV_max", "", 1.0, 15.0, 15.0, "paper 000 §2.2 (CV_max = 15)", "Ceiling of a cell's CV.", true},
-      }};
+  static const RuleInfo info{"himm",
+                             "HIMM histogram",
+                             "paper 000 §2.2",
+                             "certainty value CV (0..15)",
+                             {
+                                 {"increment", "I⁺", "", 1.0, 15.0, 3.0, "paper 000 §2.2 (I⁺ = 3)",
+                                  "Added to the echo cell.", true},
+                                 {"decrement", "I⁻", "", 0.0, 15.0, 1.0, "paper 000 §2.2 (I⁻ = 1)",
+                                  "Taken from each cell before the echo.", true},
+                                 {"cv_max", "CV_max", "", 1.0, 15.0, 15.0,
+                                  "paper 000 §2.2 (CV_max = 15)", "Ceiling of a cell's CV.", true},
+                             }};
   return info;
 }
 
@@ -27,7 +29,9 @@ void HimmRule::configure(const ParameterSet& p) {
   cvMax_ = static_cast<int>(p.get("cv_max"));
 }
 
-void HimmRule::reset(std::size_t cells) { cv_.assign(cells, 0); }
+void HimmRule::reset(std::size_t cells) {
+  cv_.assign(cells, 0);
+}
 
 void HimmRule::apply(const Footprint& fp) {
   for (const CellEvidence& c : fp.cells) {

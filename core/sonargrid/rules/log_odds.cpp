@@ -10,7 +10,9 @@
 
 namespace sg {
 namespace {
-double odds(double p) { return p / (1.0 - p); }
+double odds(double p) {
+  return p / (1.0 - p);
+}
 // Keeps a model's 0 or 1 from becoming an infinite step; the clamp bounds the layer anyway.
 constexpr double kProbabilityFloor = 1e-6;
 }  // namespace
@@ -22,8 +24,10 @@ const RuleInfo& LogOddsRule::staticInfo() {
       "Thrun et al. 2005 §9.2; OctoMap AbstractOccupancyOcTree (clamping 0.12 / 0.97)",
       "log-odds L",
       {
-          {"prior", "P(H)", "", 0.01, 0.99, 0.5, "Thrun et al. 2005 §9.2 (l₀)", "Occupancy of a cell nobody has seen."},
-          {"clamp_min", "p_min", "", 0.001, 0.5, 0.12, "OctoMap default clamping threshold (0.1192)",
+          {"prior", "P(H)", "", 0.01, 0.99, 0.5, "Thrun et al. 2005 §9.2 (l₀)",
+           "Occupancy of a cell nobody has seen."},
+          {"clamp_min", "p_min", "", 0.001, 0.5, 0.12,
+           "OctoMap default clamping threshold (0.1192)",
            "Lower clamp of a cell's probability; keeps cells able to change."},
           {"clamp_max", "p_max", "", 0.5, 0.999, 0.97, "OctoMap default clamping threshold (0.971)",
            "Upper clamp of a cell's probability."},
@@ -37,19 +41,26 @@ void LogOddsRule::configure(const ParameterSet& p) {
   maxOdds_ = odds(p.get("clamp_max"));
 }
 
-void LogOddsRule::reset(std::size_t cells) { odds_.assign(cells, priorOdds_); }
+void LogOddsRule::reset(std::size_t cells) {
+  odds_.assign(cells, priorOdds_);
+}
 
 void LogOddsRule::apply(const Footprint& fp) {
   const double invPrior = 1.0 / priorOdds_;
   for (const CellEvidence& c : fp.cells) {
-    const double p = std::clamp(static_cast<double>(c.probability), kProbabilityFloor, 1.0 - kProbabilityFloor);
+    const double p =
+        std::clamp(static_cast<double>(c.probability), kProbabilityFloor, 1.0 - kProbabilityFloor);
     double& o = odds_[c.cell];
     o = std::clamp(o * odds(p) * invPrior, minOdds_, maxOdds_);
   }
 }
 
-double LogOddsRule::native(std::size_t i) const { return std::log(odds_[i]); }
+double LogOddsRule::native(std::size_t i) const {
+  return std::log(odds_[i]);
+}
 
-double LogOddsRule::occupancy(std::size_t i) const { return odds_[i] / (1.0 + odds_[i]); }
+double LogOddsRule::occupancy(std::size_t i) const {
+  return odds_[i] / (1.0 + odds_[i]);
+}
 
 }  // namespace sg

@@ -33,19 +33,25 @@ void LogRule::configure(const ParameterSet& p) {
   cutMax_ = p.get("cut_max");
 }
 
-void LogRule::reset(std::size_t cells) { product_.assign(cells, 1.0); }
+void LogRule::reset(std::size_t cells) {
+  product_.assign(cells, 1.0);
+}
 
 void LogRule::apply(const Footprint& fp) {
   constexpr double kLow = 1e-300, kHigh = 1e300;
   for (const CellEvidence& c : fp.cells) {
     double& m = product_[c.cell];
     m *= (1.0 - static_cast<double>(c.empty)) * (1.0 + static_cast<double>(c.occupied));
-    if (m > kHigh) m = kHigh;
-    else if (m < kLow && m > 0.0) m = kLow;
+    if (m > kHigh)
+      m = kHigh;
+    else if (m < kLow && m > 0.0)
+      m = kLow;
   }
 }
 
-double LogRule::native(std::size_t i) const { return std::clamp(std::log10(product_[i]), cutMin_, cutMax_); }
+double LogRule::native(std::size_t i) const {
+  return std::clamp(std::log10(product_[i]), cutMin_, cutMax_);
+}
 
 double LogRule::occupancy(std::size_t i) const {
   // Piecewise linear in the cut value: cut_min ↦ 0, 0 (no net evidence) ↦ 0.5, cut_max ↦ 1.

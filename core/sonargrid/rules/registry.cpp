@@ -10,13 +10,20 @@ std::vector<std::string> updateRuleNames() {
 
 std::unique_ptr<UpdateRule> makeUpdateRule(const std::string& name) {
   std::unique_ptr<UpdateRule> r;
-  if (name == "addition") r = std::make_unique<AdditionRule>();
-  else if (name == "bayes") r = std::make_unique<BayesRule>(BayesRule::Input::Evidence);
-  else if (name == "bayes-recursive") r = std::make_unique<BayesRule>(BayesRule::Input::Likelihood);
-  else if (name == "log") r = std::make_unique<LogRule>();
-  else if (name == "logodds") r = std::make_unique<LogOddsRule>();
-  else if (name == "himm") r = std::make_unique<HimmRule>();
-  else if (name == "dempster-shafer") r = std::make_unique<DempsterShaferRule>();
+  if (name == "addition")
+    r = std::make_unique<AdditionRule>();
+  else if (name == "bayes")
+    r = std::make_unique<BayesRule>(BayesRule::Input::Evidence);
+  else if (name == "bayes-recursive")
+    r = std::make_unique<BayesRule>(BayesRule::Input::Likelihood);
+  else if (name == "log")
+    r = std::make_unique<LogRule>();
+  else if (name == "logodds")
+    r = std::make_unique<LogOddsRule>();
+  else if (name == "himm")
+    r = std::make_unique<HimmRule>();
+  else if (name == "dempster-shafer")
+    r = std::make_unique<DempsterShaferRule>();
   if (r) r->configure(ParameterSet(r->info().parameters));
   return r;
 }
@@ -36,12 +43,14 @@ Compatibility compatibility(const std::string& model, const std::string& rule) {
   // docs/models.md carries this table with the same reasons.
   if (rule == "himm" && model != "himm") {
     return {false,
-            "the HIMM histogram adds I+ to one cell per reading on the acoustic axis (paper 000 §2.2); a cone "
+            "the HIMM histogram adds I+ to one cell per reading on the acoustic axis (paper 000 "
+            "§2.2); a cone "
             "model writes hundreds of cells per reading and would raise the whole arc"};
   }
   if (model == "himm" && rule == "addition") {
     return {false,
-            "probability addition normalises each reading's occupied arc to sum 1 (paper 001 §3.1); HIMM's arc "
+            "probability addition normalises each reading's occupied arc to sum 1 (paper 001 "
+            "§3.1); HIMM's arc "
             "is one cell, so every echo would set Occ to 1"};
   }
   return {};

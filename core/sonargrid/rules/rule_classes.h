@@ -33,7 +33,9 @@ class BayesRule final : public UpdateRule {
   explicit BayesRule(Input input) : input_(input) {}
   static const RuleInfo& evidenceInfo();
   static const RuleInfo& likelihoodInfo();
-  const RuleInfo& info() const override { return input_ == Input::Evidence ? evidenceInfo() : likelihoodInfo(); }
+  const RuleInfo& info() const override {
+    return input_ == Input::Evidence ? evidenceInfo() : likelihoodInfo();
+  }
   void configure(const ParameterSet& params) override;
   void reset(std::size_t cells) override;
   void apply(const Footprint& footprint) override;

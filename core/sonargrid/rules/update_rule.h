@@ -15,7 +15,7 @@
 namespace sg {
 
 struct RuleInfo {
-  std::string name;        // registry and CLI name, e.g. "bayes"
+  std::string name;  // registry and CLI name, e.g. "bayes"
   std::string title;
   std::string source;
   std::string nativeName;  // what native() holds, e.g. "log-odds"
@@ -35,7 +35,7 @@ class UpdateRule {
 
   virtual double occupancy(std::size_t cell) const = 0;  // p(occupied) in [0, 1]
   virtual double native(std::size_t cell) const = 0;
-  virtual bool filled(std::size_t cell) const = 0;       // occupied evidence beats free evidence
+  virtual bool filled(std::size_t cell) const = 0;  // occupied evidence beats free evidence
   virtual std::uint8_t level(std::size_t cell) const { return levelOfProbability(occupancy(cell)); }
 };
 
