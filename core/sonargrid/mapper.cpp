@@ -117,6 +117,20 @@ constexpr std::size_t kParallelMinimum = 4096;
 constexpr std::size_t kSlots = 64;
 constexpr std::int64_t kEmptySlot = -1;
 
+// Waits until `value` differs from `old`. A footprint takes some 10 µs, so the wait is usually
+// over within a short spin; sleeping at once would cost a futex call and a wake-up per footprint
+// on each side. The spin is bounded (~20 µs) so an idle or oversubscribed machine still sleeps.
+template <class T>
+void waitForChange(const std::atomic<T>& value, T old) {
+  for (int k = 0; k < 512; ++k) {
+    if (value.load(std::memory_order_acquire) != old) return;
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+  }
+  value.wait(old, std::memory_order_acquire);
+}
+
 // An ordered pipeline: any thread may compute footprint i once its slot (i mod kSlots) is free;
 // only the applying thread folds them into the grid, strictly in order 0, 1, 2, ...
 struct Pipeline {
@@ -164,7 +178,7 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
         for (std::size_t a = p.applied.load(std::memory_order_acquire); i >= a + kSlots;
              a = p.applied.load(std::memory_order_acquire)) {
           if (p.stop.load(std::memory_order_relaxed)) return;
-          p.applied.wait(a, std::memory_order_acquire);
+          waitForChange(p.applied, a);
         }
         compute(i);
       }
@@ -201,7 +215,7 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
           compute(j);
           continue;
         }
-        slot.holds.wait(held, std::memory_order_acquire);
+        waitForChange(slot.holds, held);
       }
       if (p.stop.load(std::memory_order_relaxed)) break;
       applyFootprint(slot.footprint);
