@@ -32,6 +32,25 @@ void coneFootprint(const Prepared& pb, const Beam& beam, const GridSpec& grid,
   out.cells.resize(dst ? static_cast<std::size_t>(dst - out.cells.data()) : start);
 }
 
+// What every cone model shares: its declaration is staticInfo(), and evaluate() and footprint() are
+// its per-reading prepare(range, maxRange) followed by at() or the rasteriser. A model supplies
+// staticInfo(), configure(), reach() and prepare().
+template <class Derived>
+class ConeModel : public SensorModel {
+ public:
+  const ModelInfo& info() const final { return Derived::staticInfo(); }
+  ModelValue evaluate(double delta, double theta, double range, double maxRange) const final {
+    return self().prepare(range, maxRange).at(delta, theta);
+  }
+  void footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+                 Footprint& out) const final {
+    coneFootprint(self().prepare(beam.range, beam.maxRange), beam, grid, tables, out);
+  }
+
+ private:
+  const Derived& self() const { return static_cast<const Derived&>(*this); }
+};
+
 // p = 0.5 + (pO - pE) / 2 and back: the translation paper 001 §3.2 uses between evidence and a
 // probability, shared by the models whose native output is one of the two.
 inline ModelValue fromEvidence(BeamRegion region, double empty, double occupied) {

@@ -10,6 +10,24 @@
 #include "sonargrid/models/model_classes.h"
 
 namespace sg {
+namespace {
+
+class HimmModel final : public SensorModel {
+ public:
+  static const ModelInfo& staticInfo();
+  const ModelInfo& info() const override { return staticInfo(); }
+  void configure(const ParameterSet& params) override;
+  ModelValue evaluate(double delta, double theta, double range, double maxRange) const override;
+  double reach(double maxRange) const override;
+  void footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+                 Footprint& out) const override;
+
+ private:
+  double pHit_ = 0.7, pMiss_ = 0.4;
+  bool noEchoFree_ = false;
+};
+
+}  // namespace
 
 const ModelInfo& HimmModel::staticInfo() {
   static const ModelInfo info{
@@ -98,6 +116,13 @@ void HimmModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTabl
     }
   }
   emit(ix, iy, echo ? hit : miss);
+}
+
+std::unique_ptr<SensorModel> makeHimmModel() {
+  return std::make_unique<HimmModel>();
+}
+const ModelInfo& himmModelInfo() {
+  return HimmModel::staticInfo();
 }
 
 }  // namespace sg

@@ -42,6 +42,18 @@ struct HpfBeam {
   }
 };
 
+class HpfModel final : public ConeModel<HpfModel> {
+ public:
+  static const ModelInfo& staticInfo();
+  void configure(const ParameterSet& params) override;
+  double reach(double maxRange) const override;
+  HpfBeam prepare(double range, double maxRange) const;
+
+ private:
+  double epsilon_ = 0.1, omega_ = 0.436, rMin_ = 0.0;
+  bool noEchoFree_ = false;
+};
+
 }  // namespace
 
 const ModelInfo& HpfModel::staticInfo() {
@@ -99,18 +111,19 @@ HpfBeam prepareHpf(double range, double maxRange, double epsilon, double omega, 
 }
 }  // namespace
 
-ModelValue HpfModel::evaluate(double delta, double theta, double range, double maxRange) const {
-  return prepareHpf(range, maxRange, epsilon_, omega_, rMin_, noEchoFree_).at(delta, theta);
+HpfBeam HpfModel::prepare(double range, double maxRange) const {
+  return prepareHpf(range, maxRange, epsilon_, omega_, rMin_, noEchoFree_);
 }
 
 double HpfModel::reach(double maxRange) const {
   return maxRange + epsilon_;
 }
 
-void HpfModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
-                         Footprint& out) const {
-  coneFootprint(prepareHpf(beam.range, beam.maxRange, epsilon_, omega_, rMin_, noEchoFree_), beam,
-                grid, tables, out);
+std::unique_ptr<SensorModel> makeHpfModel() {
+  return std::make_unique<HpfModel>();
+}
+const ModelInfo& hpfModelInfo() {
+  return HpfModel::staticInfo();
 }
 
 }  // namespace sg

@@ -18,9 +18,19 @@
 
 #include "sonargrid/models/cone_model.h"
 #include "sonargrid/models/model_classes.h"
+#include "sonargrid/models/sampled_function.h"
 
 namespace sg {
 namespace {
+
+struct KonoligeSettings {
+  double omega = 0.436;            // rad, full aperture
+  double falseRate = 0.05;         // F, per metre
+  double attenuation = 0.6;        // a0
+  double attenuationSlope = 0.4;   // k, 1/m: a(r) = a0 (1 - min(1, k r))
+  double sd0 = 0.01, sd1 = 0.015;  // d(r) = d0 + d1 r, metres
+  bool noEchoFree = false;
+};
 
 constexpr double kZMax = 8.0;  // |z| beyond which φ and Φ are 0/1 to double precision in effect
 // Cells this many deviations past D are left alone. There λ − 1 = g φ(z)/(d F) − g Φ(z) is at most
@@ -28,7 +38,7 @@ constexpr double kZMax = 8.0;  // |z| beyond which φ and Φ are 0/1 to double p
 // z < −5 ⟺ r > (D + 5 d₀)/(1 − 5 d₁), so the cut is the reading's reach, not a per-cell test.
 constexpr double kZShadow = -5.0;
 
-double shadowRange(const KonoligeModel::Settings& s, double D) {
+double shadowRange(const KonoligeSettings& s, double D) {
   return (D - kZShadow * s.sd0) / (1.0 + kZShadow * s.sd1);
 }
 
@@ -77,7 +87,7 @@ struct KonoligeBeam {
   double halfAngle = 0.0;
   bool echo = true;
   double range = 0.0;
-  const KonoligeModel::Settings* s = nullptr;
+  const KonoligeSettings* s = nullptr;
   const SampledFunction* lobe = nullptr;
   const NormalTable* normal = nullptr;
   double invF = 0.0;
@@ -102,6 +112,19 @@ struct KonoligeBeam {
     }
     return fromLikelihoodRatio(lambda);
   }
+};
+
+class KonoligeModel final : public ConeModel<KonoligeModel> {
+ public:
+  KonoligeModel();
+  static const ModelInfo& staticInfo();
+  void configure(const ParameterSet& params) override;
+  double reach(double maxRange) const override;
+  KonoligeBeam prepare(double range, double maxRange) const;
+
+ private:
+  KonoligeSettings s_;
+  SampledFunction lobe_;  // exp(-θ²/2σ²) over |θ| in [0, ω/2]
 };
 
 }  // namespace
@@ -152,8 +175,8 @@ void KonoligeModel::configure(const ParameterSet& p) {
 }
 
 namespace {
-KonoligeBeam prepareKonolige(const KonoligeModel::Settings& s, const SampledFunction& lobe,
-                             double range, double maxRange) {
+KonoligeBeam prepareKonolige(const KonoligeSettings& s, const SampledFunction& lobe, double range,
+                             double maxRange) {
   KonoligeBeam b;
   b.echo = std::isfinite(range);
   if (!b.echo && !s.noEchoFree) return b;
@@ -173,9 +196,8 @@ KonoligeBeam prepareKonolige(const KonoligeModel::Settings& s, const SampledFunc
 }
 }  // namespace
 
-ModelValue KonoligeModel::evaluate(double delta, double theta, double range,
-                                   double maxRange) const {
-  return prepareKonolige(s_, lobe_, range, maxRange).at(delta, theta);
+KonoligeBeam KonoligeModel::prepare(double range, double maxRange) const {
+  return prepareKonolige(s_, lobe_, range, maxRange);
 }
 
 double KonoligeModel::reach(double maxRange) const {
@@ -184,9 +206,11 @@ double KonoligeModel::reach(double maxRange) const {
   return r;
 }
 
-void KonoligeModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
-                              Footprint& out) const {
-  coneFootprint(prepareKonolige(s_, lobe_, beam.range, beam.maxRange), beam, grid, tables, out);
+std::unique_ptr<SensorModel> makeKonoligeModel() {
+  return std::make_unique<KonoligeModel>();
+}
+const ModelInfo& konoligeModelInfo() {
+  return KonoligeModel::staticInfo();
 }
 
 }  // namespace sg

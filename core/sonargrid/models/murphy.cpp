@@ -63,6 +63,20 @@ MurphyBeam prepareMurphy(double range, double maxRange, double R, double beta, d
   return b;
 }
 
+class MurphyModel final : public ConeModel<MurphyModel> {
+ public:
+  static const ModelInfo& staticInfo();
+  void configure(const ParameterSet& params) override;
+  double reach(double maxRange) const override;
+  MurphyBeam prepare(double range, double maxRange) const {
+    return prepareMurphy(range, maxRange, maxRange_, beta_, tolerance_, maxOccupied_, noEchoFree_);
+  }
+
+ private:
+  double maxRange_ = 5.0, beta_ = 0.2618, tolerance_ = 0.1, maxOccupied_ = 0.98;
+  bool noEchoFree_ = false;
+};
+
 }  // namespace
 
 const ModelInfo& MurphyModel::staticInfo() {
@@ -93,20 +107,15 @@ void MurphyModel::configure(const ParameterSet& p) {
   noEchoFree_ = p.get("no_echo") != 0.0;
 }
 
-ModelValue MurphyModel::evaluate(double delta, double theta, double range, double maxRange) const {
-  return prepareMurphy(range, maxRange, maxRange_, beta_, tolerance_, maxOccupied_, noEchoFree_)
-      .at(delta, theta);
-}
-
 double MurphyModel::reach(double maxRange) const {
   return std::max(maxRange, maxRange_) + tolerance_;
 }
 
-void MurphyModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
-                            Footprint& out) const {
-  coneFootprint(prepareMurphy(beam.range, beam.maxRange, maxRange_, beta_, tolerance_, maxOccupied_,
-                              noEchoFree_),
-                beam, grid, tables, out);
+std::unique_ptr<SensorModel> makeMurphyModel() {
+  return std::make_unique<MurphyModel>();
+}
+const ModelInfo& murphyModelInfo() {
+  return MurphyModel::staticInfo();
 }
 
 }  // namespace sg

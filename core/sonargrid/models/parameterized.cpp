@@ -73,6 +73,20 @@ ParameterizedBeam prepareParameterized(double range, double maxRange, double p1,
   return b;
 }
 
+class ParameterizedModel final : public ConeModel<ParameterizedModel> {
+ public:
+  static const ModelInfo& staticInfo();
+  void configure(const ParameterSet& params) override;
+  double reach(double maxRange) const override;
+  ParameterizedBeam prepare(double range, double maxRange) const {
+    return prepareParameterized(range, maxRange, p1_, p2_, p3_, p4_, p5_, noEchoFree_);
+  }
+
+ private:
+  double p1_ = 0.02, p2_ = 0.15, p3_ = 0.1, p4_ = 0.98, p5_ = 0.2618;
+  bool noEchoFree_ = false;
+};
+
 }  // namespace
 
 const ModelInfo& ParameterizedModel::staticInfo() {
@@ -108,21 +122,15 @@ void ParameterizedModel::configure(const ParameterSet& p) {
   noEchoFree_ = p.get("no_echo") != 0.0;
 }
 
-ModelValue ParameterizedModel::evaluate(double delta, double theta, double range,
-                                        double maxRange) const {
-  return prepareParameterized(range, maxRange, p1_, p2_, p3_, p4_, p5_, noEchoFree_)
-      .at(delta, theta);
-}
-
 double ParameterizedModel::reach(double maxRange) const {
   return maxRange + p3_;
 }
 
-void ParameterizedModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
-                                   Footprint& out) const {
-  coneFootprint(
-      prepareParameterized(beam.range, beam.maxRange, p1_, p2_, p3_, p4_, p5_, noEchoFree_), beam,
-      grid, tables, out);
+std::unique_ptr<SensorModel> makeParameterizedModel() {
+  return std::make_unique<ParameterizedModel>();
+}
+const ModelInfo& parameterizedModelInfo() {
+  return ParameterizedModel::staticInfo();
 }
 
 }  // namespace sg

@@ -28,25 +28,25 @@ std::vector<std::string> sensorModelNames() {
 std::unique_ptr<SensorModel> makeSensorModel(const std::string& name) {
   std::unique_ptr<SensorModel> m;
   if (name == "hpf")
-    m = std::make_unique<HpfModel>();
+    m = makeHpfModel();
   else if (name == "konolige")
-    m = std::make_unique<KonoligeModel>();
+    m = makeKonoligeModel();
   else if (name == "murphy")
-    m = std::make_unique<MurphyModel>();
+    m = makeMurphyModel();
   else if (name == "parameterized")
-    m = std::make_unique<ParameterizedModel>();
+    m = makeParameterizedModel();
   else if (name == "himm")
-    m = std::make_unique<HimmModel>();
+    m = makeHimmModel();
   if (m) m->configure(ParameterSet(m->info().parameters));
   return m;
 }
 
 const ModelInfo& sensorModelInfo(const std::string& name) {
-  if (name == "hpf") return HpfModel::staticInfo();
-  if (name == "konolige") return KonoligeModel::staticInfo();
-  if (name == "murphy") return MurphyModel::staticInfo();
-  if (name == "parameterized") return ParameterizedModel::staticInfo();
-  if (name == "himm") return HimmModel::staticInfo();
+  if (name == "hpf") return hpfModelInfo();
+  if (name == "konolige") return konoligeModelInfo();
+  if (name == "murphy") return murphyModelInfo();
+  if (name == "parameterized") return parameterizedModelInfo();
+  if (name == "himm") return himmModelInfo();
   throw std::invalid_argument("unknown sensor model '" + name + "'");
 }
 

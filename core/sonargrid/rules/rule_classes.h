@@ -112,8 +112,6 @@ class DempsterShaferRule final : public UpdateRule {
   double occupancy(std::size_t cell) const override;
   double native(std::size_t cell) const override { return occ_[cell] - emp_[cell]; }
   bool filled(std::size_t cell) const override { return occ_[cell] > emp_[cell]; }
-  double massOccupied(std::size_t cell) const { return occ_[cell]; }
-  double massEmpty(std::size_t cell) const { return emp_[cell]; }
 
  private:
   std::vector<double> occ_, emp_;  // m(occ), m(emp); m(unknown) = 1 − both
