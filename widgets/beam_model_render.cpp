@@ -162,6 +162,17 @@ BeamExtent beamExtent(const std::vector<BeamScene>& scenes) {
   for (const BeamScene& s : scenes) {
     e.xMax = std::max(e.xMax, std::isfinite(s.range) ? 1.3 * s.range + 0.2 : 1.1 * s.maxRange);
   }
+  // Far enough to show where each model stops writing on the axis (Region III beyond it).
+  const double searched = 2.0 * e.xMax;
+  for (const BeamScene& s : scenes) {
+    const BeamProbe probe(s);
+    double far = 0.0;
+    for (int i = 0; i <= 400; ++i) {
+      const double r = searched * i / 400.0;
+      if (probe.at(r, 0.0).region != BeamRegion::Outside) far = r;
+    }
+    e.xMax = std::max(e.xMax, 1.12 * far);
+  }
   // How wide the models write: the largest angle at which any of them gives a value.
   double alpha = 0.0;
   for (const BeamScene& s : scenes) {
@@ -252,11 +263,11 @@ BeamLayout beamLayout(QSize size, int columns) {
   columns = std::max(1, columns);
   BeamLayout l;
   const int fp = std::clamp(size.height() / 50, 12, 20);
-  const int barWidth = std::max(6 * fp, size.width() / 11);
+  const int barWidth = std::max(7 * fp, size.width() / 11);
   const int columnWidth = (size.width() - barWidth) / columns;
   const int titleHeight = 3 * fp;
   const int rest = size.height() - titleHeight;
-  const int mapHeight = rest * 42 / 100, profileHeight = rest * 29 / 100;
+  const int mapHeight = rest * 40 / 100, profileHeight = rest * 26 / 100;
   for (int c = 0; c < columns; ++c) {
     const int x = c * columnWidth;
     l.title.emplace_back(x, 0, columnWidth, titleHeight);
@@ -353,18 +364,31 @@ void drawAxialProfile(QPainter& painter, const BeamScene& scene, const BeamExten
   const std::vector<AxialSpan> spans = axialSpans(scene, extent.xMax);
   painter.setFont(fontOf(fp, true));
   const QFontMetrics bold(painter.font());
+  // Labels go where the curve is not (low for Region I, whose values are high; high elsewhere),
+  // beside a span too narrow for its name, and never over a label already placed.
+  std::vector<QRectF> placed;
   for (const AxialSpan& s : spans) {
     double a = px(s.from), b = px(s.to);
     if (b - a < 3.0) a = (a + b) / 2.0 - 1.5, b = a + 3.0;
     painter.fillRect(QRectF(a, plot.top(), b - a, plot.height()), regionShade(s.region));
-    const int width = bold.horizontalAdvance(s.label);
-    const double centre = (a + b) / 2.0;
-    painter.setPen(QColor(40, 40, 40));
-    if (width + 6 < b - a) {
-      painter.drawText(QPointF(centre - width / 2.0, plot.top() + fp * 1.2), s.label);
-    } else if (s.region == BeamRegion::Occupied) {
-      // Too narrow for its name (a thin Region I, the HIMM echo cell): label it beside the span.
-      painter.drawText(QPointF(b + 4, plot.top() + fp * 1.2), s.label);
+  }
+  painter.setPen(QColor(40, 40, 40));
+  for (const AxialSpan& s : spans) {
+    const double a = px(s.from), b = px(s.to);
+    const double width = bold.horizontalAdvance(s.label) + 6.0;
+    const double left = width < b - a ? (a + b - width) / 2.0 : b + 2.0;
+    const bool low = s.region == BeamRegion::Occupied;
+    for (int line = 0; line < 2; ++line) {
+      const double top =
+          low ? plot.bottom() - fp * (1.6 + 1.3 * line) : plot.top() + fp * (0.2 + 1.3 * line);
+      const QRectF box(left, top, width, fp * 1.3);
+      const bool free = std::none_of(placed.begin(), placed.end(),
+                                     [&](const QRectF& r) { return r.intersects(box); });
+      if (free && box.right() <= plot.right() + 1) {
+        painter.drawText(box, Qt::AlignCenter, s.label);
+        placed.push_back(box);
+        break;
+      }
     }
   }
 
@@ -466,9 +490,9 @@ void drawSurface(QPainter& painter, const BeamScene& scene, const BeamExtent& ex
   auto vertex = [&](std::size_t i, std::size_t j) -> const Vertex& { return vertices[j * nx + i]; };
 
   // View: azimuth and elevation chosen so the cone opens to the right and the peaks stand up.
-  const double az = -0.55, el = 0.5;
+  const double az = -0.35, el = 0.45;
   const double ca = std::cos(az), sa = std::sin(az), ce = std::cos(el), se = std::sin(el);
-  const double height = 0.45;  // box height relative to the axis length
+  const double height = 0.5;  // box height relative to the axis length
   struct Projected {
     QPointF screen;
     double depth;
@@ -493,7 +517,7 @@ void drawSurface(QPainter& painter, const BeamScene& scene, const BeamExtent& ex
     minX = std::min(minX, c.x()), maxX = std::max(maxX, c.x());
     minY = std::min(minY, c.y()), maxY = std::max(maxY, c.y());
   }
-  const QRectF target = QRectF(area).adjusted(3.5 * fp, fp, -fp, -1.5 * fp);
+  const QRectF target = QRectF(area).adjusted(3.0 * fp, 1.2 * fp, -fp, -1.4 * fp);
   const double scale = std::min(target.width() / (maxX - minX), target.height() / (maxY - minY));
   const QPointF offset(target.center().x() - scale * (minX + maxX) / 2.0,
                        target.center().y() - scale * (minY + maxY) / 2.0);
@@ -560,7 +584,9 @@ void drawSurface(QPainter& painter, const BeamScene& scene, const BeamExtent& ex
 
   for (const Quad& q : quads) {
     painter.setBrush(q.colour);
-    painter.setPen(QPen(q.colour.darker(135), 0.6));
+    // Wire edges on the surface only; the flat no-update plane stays calm.
+    painter.setPen(q.colour == noUpdateColour() ? QPen(q.colour, 0.6)
+                                                : QPen(q.colour.darker(135), 0.6));
     painter.drawPolygon(q.polygon);
   }
 
@@ -581,7 +607,7 @@ void drawColourBar(QPainter& painter, const QRect& area) {
   painter.setPen(QColor(40, 40, 40));
   painter.drawText(QRect(area.left(), area.top(), area.width(), fp * 2), Qt::AlignCenter,
                    QStringLiteral("P(occ)"));
-  const QRect bar(area.left() + fp, area.top() + fp * 3, fp * 2, area.height() - fp * 9);
+  const QRect bar(area.left() + fp / 2, area.top() + fp * 4, fp * 2, area.height() - fp * 10);
   for (int y = 0; y < bar.height(); ++y) {
     const double p = 1.0 - (y + 0.5) / bar.height();
     painter.fillRect(QRect(bar.left(), bar.top() + y, bar.width(), 1), occupancyColour(p));
@@ -596,7 +622,7 @@ void drawColourBar(QPainter& painter, const QRect& area) {
     painter.drawText(QPointF(bar.right() + fp * 0.7, y + fp * 0.35), number(t));
   }
   painter.setFont(fontOf(std::max(11, fp - 2)));
-  painter.drawText(QPointF(bar.left(), bar.top() - fp * 0.4), QStringLiteral("occupied"));
+  painter.drawText(QPointF(bar.left(), bar.top() - fp * 0.9), QStringLiteral("occupied"));
   painter.drawText(QPointF(bar.left(), bar.bottom() + fp * 1.3), QStringLiteral("free"));
   // The no-update swatch.
   const QRect swatch(bar.left(), bar.bottom() + fp * 2, bar.width(), fp * 2);
