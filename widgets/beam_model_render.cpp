@@ -171,7 +171,7 @@ BeamExtent beamExtent(const std::vector<BeamScene>& scenes) {
       const double r = searched * i / 400.0;
       if (probe.at(r, 0.0).region != BeamRegion::Outside) far = r;
     }
-    e.xMax = std::max(e.xMax, 1.12 * far);
+    e.xMax = std::max(e.xMax, 1.3 * far);
   }
   // How wide the models write: the largest angle at which any of them gives a value.
   double alpha = 0.0;
@@ -595,7 +595,7 @@ void drawSurface(QPainter& painter, const BeamScene& scene, const BeamExtent& ex
   painter.drawText(pLabel + QPointF(-fp * 1.5, -fp * 0.6), QStringLiteral("P(occ)"));
   const QPointF rLabel = toScreen(extent.xMax, -extent.yMax, 0.0);
   painter.drawText(rLabel + QPointF(-fp * 5, fp * 1.3),
-                   QStringLiteral("x → %1 m").arg(number(extent.xMax)));
+                   QStringLiteral("x → %1 m").arg(extent.xMax, 0, 'f', 1));
   painter.restore();
 }
 
