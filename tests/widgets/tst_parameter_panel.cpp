@@ -1,0 +1,312 @@
+// The parameter panel driven as a user drives it (QTest keys and mouse), watched with QSignalSpy.
+// Expected parameter lists are the declarations in core/sonargrid/models/*.cpp and rules/*.cpp;
+// expected values are worked out in the comment beside each.
+
+#include <QtTest>
+
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QLabel>
+#include <QPushButton>
+#include <QSlider>
+#include <QStandardItemModel>
+
+#include "parameter_panel.h"
+#include "sonargrid/presets.h"
+
+using namespace sg;
+using sg::ui::ParameterPanel;
+
+Q_DECLARE_METATYPE(sg::MapperSettings)
+
+namespace {
+
+void choose(QComboBox* combo, const QString& name) {
+  const int index = combo->findData(name);
+  QVERIFY2(index >= 0, qPrintable(name));
+  combo->setCurrentIndex(index);
+}
+
+QStringList sliderNames(const ParameterPanel& panel) {
+  QStringList names;
+  for (const QSlider* s : panel.findChildren<QSlider*>()) {
+    if (s->objectName().startsWith("slider_")) names << s->objectName().mid(7);
+  }
+  names.sort();
+  return names;
+}
+
+MapperSettings lastEmitted(const QSignalSpy& spy) {
+  return spy.last().at(0).value<MapperSettings>();
+}
+
+// Presses the left button on the slider's handle, moves to `to` with the button held, releases.
+void drag(QSlider* slider, const QPoint& to) {
+  QStyleOptionSlider option;
+  option.initFrom(slider);
+  option.orientation = slider->orientation();
+  option.minimum = slider->minimum();
+  option.maximum = slider->maximum();
+  option.sliderPosition = slider->sliderPosition();
+  option.sliderValue = slider->value();
+  const QRect handle =
+      slider->style()->subControlRect(QStyle::CC_Slider, &option, QStyle::SC_SliderHandle, slider);
+  const QPoint from = handle.center();
+  QTest::mousePress(slider, Qt::LeftButton, Qt::NoModifier, from);
+  for (int i = 1; i <= 8; ++i) {
+    const QPoint at = from + (to - from) * i / 8;
+    QMouseEvent move(QEvent::MouseMove, at, slider->mapToGlobal(at), Qt::NoButton, Qt::LeftButton,
+                     Qt::NoModifier);
+    QApplication::sendEvent(slider, &move);
+  }
+  QTest::mouseRelease(slider, Qt::LeftButton, Qt::NoModifier, to);
+}
+
+}  // namespace
+
+class TstParameterPanel : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void initTestCase() { qRegisterMetaType<MapperSettings>(); }
+  void rowsFollowModelAndRule_data();
+  void rowsFollowModelAndRule();
+  void incompatibleRulesAreDisabled();
+  void modelChangeMovesAnIncompatibleRule();
+  void sliderKeysChangeSettings();
+  void sliderDragChangesSettings();
+  void spinBoxTyping();
+  void presetsSetCitedValues();
+  void resetRestoresDefaults();
+  void setSettingsIsSilentAndChecked();
+  void remapTime();
+};
+
+void TstParameterPanel::rowsFollowModelAndRule_data() {
+  QTest::addColumn<QString>("model");
+  QTest::addColumn<QString>("rule");
+  QTest::addColumn<QStringList>("expected");
+  // hpf.cpp: ε, ω, R_min, no_echo; addition.cpp: combine, normalise.
+  QTest::newRow("hpf+addition") << "hpf"
+                                << "addition" << QStringList{"combine",   "epsilon", "no_echo",
+                                                             "normalise", "omega",   "r_min"};
+  // konolige.cpp: ω, F, a₀, k, d₀, d₁, no_echo; log_rule.cpp: cut_min, cut_max.
+  QTest::newRow("konolige+log") << "konolige"
+                                << "log"
+                                << QStringList{"attenuation", "attenuation_slope", "cut_max",
+                                               "cut_min",     "false_rate",        "no_echo",
+                                               "omega",       "range_sd0",         "range_sd1"};
+  // murphy.cpp: R, β, tol, Max_occ, no_echo; bayes.cpp: prior.
+  QTest::newRow("murphy+bayes-recursive")
+      << "murphy"
+      << "bayes-recursive"
+      << QStringList{"beta", "max_occupied", "max_range", "no_echo", "prior", "tolerance"};
+  // parameterized.cpp: P1–P5, no_echo; log_odds.cpp: prior, clamp_min, clamp_max.
+  QTest::newRow("parameterized+logodds")
+      << "parameterized"
+      << "logodds"
+      << QStringList{"clamp_max", "clamp_min", "no_echo", "p1", "p2", "p3", "p4", "p5", "prior"};
+  // himm_model.cpp: p_hit, p_miss, no_echo; himm_rule.cpp: I⁺, I⁻, CV_max.
+  QTest::newRow("himm+himm") << "himm"
+                             << "himm" << QStringList{"cv_max",  "decrement", "increment",
+                                                      "no_echo", "p_hit",     "p_miss"};
+  // dempster_shafer.cpp declares nothing.
+  QTest::newRow("murphy+dempster-shafer")
+      << "murphy"
+      << "dempster-shafer"
+      << QStringList{"beta", "max_occupied", "max_range", "no_echo", "tolerance"};
+}
+
+void TstParameterPanel::rowsFollowModelAndRule() {
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  QFETCH(QStringList, expected);
+  ParameterPanel panel;
+  choose(panel.findChild<QComboBox*>("modelChooser"), model);
+  choose(panel.findChild<QComboBox*>("ruleChooser"), rule);
+  QCOMPARE(QString::fromStdString(panel.settings().model), model);
+  QCOMPARE(QString::fromStdString(panel.settings().rule), rule);
+  QCOMPARE(sliderNames(panel), expected);
+  // Each spin box spans exactly its declaration and shows the default.
+  const MapperSettings settings = panel.settings();
+  for (const ParameterSpec& spec : settings.parameters.specs()) {
+    const QDoubleSpinBox* spin = panel.spinBoxFor(QString::fromStdString(spec.name));
+    QVERIFY(spin);
+    QCOMPARE(spin->minimum(), spec.min);
+    QCOMPARE(spin->maximum(), spec.max);
+    QCOMPARE(spin->value(), spec.defaultValue);
+    QVERIFY(spin->toolTip().contains(QString::fromStdString(spec.source).toHtmlEscaped()));
+  }
+}
+
+void TstParameterPanel::incompatibleRulesAreDisabled() {
+  ParameterPanel panel;  // hpf + addition
+  auto* rules = panel.findChild<QComboBox*>("ruleChooser");
+  auto* items = qobject_cast<QStandardItemModel*>(rules->model());
+  const QStandardItem* himm = items->item(rules->findData("himm"));
+  QVERIFY(!himm->isEnabled());
+  // rules/registry.cpp: the HIMM rule raises one axis cell per reading (paper 000 §2.2).
+  QVERIFY(himm->toolTip().contains("paper 000 §2.2"));
+  QVERIFY(items->item(rules->findData("bayes"))->isEnabled());
+
+  choose(panel.findChild<QComboBox*>("modelChooser"), "himm");
+  QVERIFY(items->item(rules->findData("himm"))->isEnabled());
+  const QStandardItem* addition = items->item(rules->findData("addition"));
+  QVERIFY(!addition->isEnabled());
+  QVERIFY(addition->toolTip().contains("paper 001"));
+  // A disabled rule set by program is refused too.
+  rules->setCurrentIndex(rules->findData("addition"));
+  QVERIFY(panel.settings().rule != "addition");
+}
+
+void TstParameterPanel::modelChangeMovesAnIncompatibleRule() {
+  ParameterPanel panel;  // hpf + addition
+  QSignalSpy spy(&panel, &ParameterPanel::settingsChanged);
+  choose(panel.findChild<QComboBox*>("modelChooser"), "himm");
+  // himm + addition is refused; the first rule in registry order that fits is bayes.
+  QCOMPARE(panel.settings().rule, std::string("bayes"));
+  QCOMPARE(spy.count(), 1);
+  QVERIFY(panel.findChild<QLabel*>("status")->text().contains("addition"));
+  QCOMPARE(sliderNames(panel), (QStringList{"no_echo", "p_hit", "p_miss", "prior"}));
+}
+
+void TstParameterPanel::sliderKeysChangeSettings() {
+  ParameterPanel panel;  // hpf: ε in [0.005, 1] m, default 0.1
+  QSlider* slider = panel.sliderFor("epsilon");
+  QVERIFY(slider);
+  QSignalSpy spy(&panel, &ParameterPanel::settingsChanged);
+  // Slider step: the smallest 1/2/5·10^k ≥ 0.995/1000 is 0.001 m; one Right = +0.001.
+  QTest::keyClick(slider, Qt::Key_Right);
+  QCOMPARE(spy.count(), 1);
+  QCOMPARE(panel.settings().parameters.get("epsilon"), 0.101);
+  QCOMPARE(lastEmitted(spy).parameters.get("epsilon"), 0.101);
+  QCOMPARE(panel.spinBoxFor("epsilon")->value(), 0.101);
+  // Page step: 995 positions / 20 = 49 → 0.101 + 0.049 = 0.150.
+  QTest::keyClick(slider, Qt::Key_PageUp);
+  QCOMPARE(spy.count(), 2);
+  QCOMPARE(panel.settings().parameters.get("epsilon"), 0.15);
+  // End = the maximum, 1 m; a second End is the same value and emits nothing.
+  QTest::keyClick(slider, Qt::Key_End);
+  QTest::keyClick(slider, Qt::Key_End);
+  QCOMPARE(spy.count(), 3);
+  QCOMPARE(panel.settings().parameters.get("epsilon"), 1.0);
+  // Left from the end: 0.005 + 994 · 0.001 = 0.999.
+  QTest::keyClick(slider, Qt::Key_Left);
+  QCOMPARE(panel.settings().parameters.get("epsilon"), 0.999);
+  QCOMPARE(spy.count(), 4);
+}
+
+void TstParameterPanel::sliderDragChangesSettings() {
+  ParameterPanel panel;
+  choose(panel.findChild<QComboBox*>("modelChooser"), "parameterized");
+  panel.resize(600, 700);
+  panel.show();
+  QVERIFY(QTest::qWaitForWindowExposed(&panel));
+  QSlider* slider = panel.sliderFor("p5");
+  QVERIFY(slider);
+  QSignalSpy spy(&panel, &ParameterPanel::settingsChanged);
+  // Dragging the handle far past the right end: P5 ends at its declared maximum, 45°.
+  drag(slider, QPoint(slider->width() + 200, slider->height() / 2));
+  QVERIFY(spy.count() >= 1);
+  QCOMPARE(panel.settings().parameters.get("p5"), 45.0);
+  // Every emission carries a value different from the one before it.
+  double previous = 15.0;  // parameterized.cpp default
+  for (const QList<QVariant>& args : spy) {
+    const double p5 = args.at(0).value<MapperSettings>().parameters.get("p5");
+    QVERIFY(p5 != previous);
+    previous = p5;
+  }
+}
+
+void TstParameterPanel::spinBoxTyping() {
+  ParameterPanel panel;
+  QDoubleSpinBox* spin = panel.spinBoxFor("omega");
+  QSignalSpy spy(&panel, &ParameterPanel::settingsChanged);
+  spin->selectAll();
+  QTest::keyClicks(spin, "30");
+  QCOMPARE(spy.count(), 0);  // no keyboard tracking: nothing until Enter
+  QTest::keyClick(spin, Qt::Key_Return);
+  QCOMPARE(spy.count(), 1);
+  QCOMPARE(panel.settings().parameters.get("omega"), 30.0);
+  // The slider follows: ω in [5, 90]°, step 0.1° (smallest nice ≥ 0.085) → (30 − 5)/0.1 = 250.
+  QCOMPARE(panel.sliderFor("omega")->value(), 250);
+}
+
+void TstParameterPanel::presetsSetCitedValues() {
+  ParameterPanel panel;
+  QSignalSpy spy(&panel, &ParameterPanel::settingsChanged);
+  auto* presets = panel.findChild<QComboBox*>("presetChooser");
+  // Keyboard: the chooser starts on "Custom"; Down moves to the first preset, paper 000 HPF.
+  presets->setFocus();
+  QTest::keyClick(presets, Qt::Key_Down);
+  QCOMPARE(presets->currentData().toString(), QString("paper000-hpf"));
+  QCOMPARE(spy.count(), 1);
+  // Paper 000 eqs 7–8: combine = 0.
+  QCOMPARE(panel.settings().parameters.get("combine"), 0.0);
+
+  // Paper 002 Table 1 col. 5: P1 0.03, P2 0.171, 2·P3 0.786, P4 0.97, P5 6.14.
+  QVERIFY(panel.applyPreset("paper002-table1-histogram"));
+  QCOMPARE(spy.count(), 2);
+  const MapperSettings s = panel.settings();
+  QCOMPARE(s.model, std::string("parameterized"));
+  QCOMPARE(s.rule, std::string("bayes-recursive"));
+  QCOMPARE(s.parameters.get("p1"), 0.03);
+  QCOMPARE(s.parameters.get("p2"), 0.171);
+  QCOMPARE(s.parameters.get("p3"), 0.393);
+  QCOMPARE(s.parameters.get("p4"), 0.97);
+  QCOMPARE(s.parameters.get("p5"), 6.14);
+  QCOMPARE(panel.spinBoxFor("p3")->value(), 0.393);
+  QCOMPARE(panel.spinBoxFor("p5")->value(), 6.14);
+  QCOMPARE(presets->currentData().toString(), QString("paper002-table1-histogram"));
+  // Applying it again changes nothing and emits nothing; moving a slider makes it "Custom".
+  QVERIFY(panel.applyPreset("paper002-table1-histogram"));
+  QCOMPARE(spy.count(), 2);
+  QTest::keyClick(panel.sliderFor("p2"), Qt::Key_Right);
+  QCOMPARE(presets->currentIndex(), 0);
+  QVERIFY(!panel.applyPreset("no-such-preset"));
+}
+
+void TstParameterPanel::resetRestoresDefaults() {
+  ParameterPanel panel;
+  choose(panel.findChild<QComboBox*>("modelChooser"), "murphy");
+  QTest::keyClick(panel.sliderFor("beta"), Qt::Key_End);
+  QCOMPARE(panel.settings().parameters.get("beta"), 45.0);  // murphy.cpp: β ≤ 45°
+  QSignalSpy spy(&panel, &ParameterPanel::settingsChanged);
+  auto* reset = panel.findChild<QPushButton*>("resetToDefaults");
+  QTest::mouseClick(reset, Qt::LeftButton);
+  QCOMPARE(spy.count(), 1);
+  QVERIFY(panel.settings().parameters == defaultParameters("murphy", "addition"));
+  QCOMPARE(panel.settings().parameters.get("beta"), 15.0);  // murphy.cpp default
+  QCOMPARE(panel.spinBoxFor("beta")->value(), 15.0);
+  QTest::mouseClick(reset, Qt::LeftButton);
+  QCOMPARE(spy.count(), 1);  // already at the defaults
+}
+
+void TstParameterPanel::setSettingsIsSilentAndChecked() {
+  ParameterPanel panel;
+  QSignalSpy spy(&panel, &ParameterPanel::settingsChanged);
+  MapperSettings s = applyPreset(*findPreset("paper002-fig6-standard"));
+  panel.setSettings(s);
+  QCOMPARE(spy.count(), 0);
+  QCOMPARE(panel.settings().model, std::string("murphy"));
+  QCOMPARE(panel.spinBoxFor("tolerance")->value(), 1.0);  // paper 002 Fig. 6
+  QCOMPARE(panel.findChild<QComboBox*>("presetChooser")->currentData().toString(),
+           QString("paper002-fig6-standard"));
+  MapperSettings bad;
+  bad.model = "hpf";
+  bad.rule = "himm";
+  panel.setSettings(bad);
+  QCOMPARE(panel.settings().model, std::string("murphy"));  // refused, kept
+  QVERIFY(panel.findChild<QLabel*>("status")->text().contains("refused"));
+}
+
+void TstParameterPanel::remapTime() {
+  ParameterPanel panel;
+  panel.showRemapTime(123.4);
+  QCOMPARE(panel.findChild<QLabel*>("remapTime")->text(), QString("Re-map: 123 ms"));
+  panel.showRemapTime(4.26);
+  QCOMPARE(panel.findChild<QLabel*>("remapTime")->text(), QString("Re-map: 4.3 ms"));
+}
+
+QTEST_MAIN(TstParameterPanel)
+#include "tst_parameter_panel.moc"

@@ -1,0 +1,80 @@
+#pragma once
+// The parameter panel: model and rule choosers, a slider and a spin box for every parameter the
+// chosen model and rule declare (built from their ParameterSpecs, nothing restated here), the paper
+// presets, Reset to defaults and the last re-map time. Every distinct value change emits
+// settingsChanged once; the re-mapping controller cancels runs that a newer change made stale.
+
+#include <QWidget>
+#include <vector>
+
+#include "sonargrid/mapper.h"
+
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+class QPushButton;
+class QSlider;
+class QVBoxLayout;
+
+namespace sg::ui {
+
+class ParameterPanel : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit ParameterPanel(QWidget* parent = nullptr);
+
+  // Shows `settings` without emitting settingsChanged. An unknown model or rule name, or an
+  // incompatible pair, is refused (the panel keeps its settings) and reported in the status line.
+  void setSettings(const sg::MapperSettings& settings);
+  sg::MapperSettings settings() const { return settings_; }
+
+  // The widgets of one parameter (objectNames "slider_<name>" and "spin_<name>"), or nullptr.
+  QSlider* sliderFor(const QString& name) const;
+  QDoubleSpinBox* spinBoxFor(const QString& name) const;
+
+  // A non-integer parameter's slider moves in "nice" steps (1, 2 or 5 × 10^k) of at least
+  // 1/kSliderResolution of its range, so slider values print as short decimals.
+  static constexpr int kSliderResolution = 1000;
+
+ public slots:
+  void showRemapTime(double milliseconds);
+  void resetToDefaults();
+  // Applies the paper preset with this registry name (sonargrid/presets.h); false when unknown.
+  bool applyPreset(const QString& name);
+
+ signals:
+  void settingsChanged(const sg::MapperSettings& settings);
+
+ private:
+  struct ParameterRow {
+    sg::ParameterSpec spec;
+    double step = 1.0;  // value change per slider position
+    QSlider* slider = nullptr;
+    QDoubleSpinBox* spin = nullptr;
+  };
+
+  void chooseModel(int index);
+  void chooseRule(int index);
+  void rebuildRows();
+  void addRows(const std::vector<sg::ParameterSpec>& specs, const QString& heading);
+  void refreshRuleAvailability();
+  void showValues();
+  void commit(const std::string& name, double value);
+  void changed();
+  void showStatus(const QString& text);
+
+  sg::MapperSettings settings_;
+  QComboBox* model_ = nullptr;
+  QComboBox* rule_ = nullptr;
+  QComboBox* preset_ = nullptr;
+  QPushButton* reset_ = nullptr;
+  QLabel* status_ = nullptr;
+  QLabel* remapTime_ = nullptr;
+  QWidget* rowsHost_ = nullptr;
+  QVBoxLayout* rowsLayout_ = nullptr;
+  std::vector<ParameterRow> rows_;
+  bool updating_ = false;  // true while the panel itself moves widgets to show settings_
+};
+
+}  // namespace sg::ui
