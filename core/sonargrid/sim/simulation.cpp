@@ -218,7 +218,10 @@ Trajectory planTrajectory(const std::optional<Pose2D>& start, std::span<const Po
     from = Pose2D(waypoints[0].x(), waypoints[0].y(), std::atan2(d.y(), d.x()));
   }
   nodes.insert(nodes.end(), waypoints.begin(), waypoints.end());
-  std::vector<PathPiece> pieces = waypointPath(from, waypoints, settings.cornerRadius);
+  // U-turn sweeps join lanes `sweepSpacing` apart by semicircles.
+  const double radius =
+      settings.route == RouteKind::UTurn ? 0.5 * settings.sweepSpacing : settings.cornerRadius;
+  std::vector<PathPiece> pieces = waypointPath(from, waypoints, radius);
   Trajectory path(from, pieces, settings.limits);
   if (!settings.duration || settings.route == RouteKind::StopAndScan) return path;
   if (!(path.length() > 0.0)) throw std::invalid_argument("the route has no length to repeat");
@@ -227,7 +230,7 @@ Trajectory planTrajectory(const std::optional<Pose2D>& start, std::span<const Po
   while (path.duration() < *settings.duration) {
     std::vector<Position> leg(nodes.begin(), nodes.end());
     if (backwards) std::reverse(leg.begin(), leg.end());
-    const std::vector<PathPiece> more = waypointPath(path.end(), leg, settings.cornerRadius);
+    const std::vector<PathPiece> more = waypointPath(path.end(), leg, radius);
     pieces.insert(pieces.end(), more.begin(), more.end());
     path = Trajectory(from, pieces, settings.limits);
     backwards = !backwards;
