@@ -17,6 +17,17 @@ double parseNumber(const std::string& text, const std::string& what) {
   return v;
 }
 
+std::uint64_t parseSeed(const std::string& text) {
+  std::uint64_t v = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, v);
+  if (text.empty() || ec != std::errc() || ptr != end) {
+    throw UsageError("--seed expects a whole number from 0 to 18446744073709551615, got '" + text +
+                     "'");
+  }
+  return v;
+}
+
 bool Arguments::flag(const std::string& name) {
   const auto n = std::count(args_.begin(), args_.end(), name);
   if (n > 1) throw UsageError(name + " is given " + std::to_string(n) + " times");

@@ -2,6 +2,7 @@
 // A small, strict command-line reader: every flag is consumed once, anything left over is an error
 // that names it. Errors are UsageError, which main() turns into exit status 2.
 
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -41,5 +42,7 @@ class Arguments {
 };
 
 double parseNumber(const std::string& text, const std::string& what);
+// A --seed value: a whole number that fits 64 bits.
+std::uint64_t parseSeed(const std::string& text);
 
 }  // namespace sg::cli

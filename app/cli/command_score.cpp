@@ -40,17 +40,6 @@ constexpr JsonKey kJsonKeys[] = {
     {"iou", Metric::Iou},
 };
 
-std::uint64_t parseSeed(const std::string& text) {
-  std::uint64_t v = 0;
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, v);
-  if (text.empty() || ec != std::errc() || ptr != end) {
-    throw UsageError("--seed expects a whole number from 0 to 18446744073709551615, got '" + text +
-                     "'");
-  }
-  return v;
-}
-
 std::string formatted(const std::optional<double>& v, const char* unit, int precision = 2) {
   if (!v) return "undefined";
   char buffer[64];

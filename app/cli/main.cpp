@@ -27,6 +27,10 @@ commands:
   goodness --log FILE [map flags] [--second-log FILE] [--json]
                              map quality without a reference: VSDNS, derivative noise,
                              two-run comparison
+  simulate --world WORLD.json --robot k2a|p3dx|amigobot
+      --route in-motion|stop-and-scan|u-turn [--route-file FILE] [--stops N]
+      [--duration S] [--seed N] [--drift on|off] --out LOG.sglog
+                             simulate a sonar log in a reference-map world
   help                       this text
 
 See docs/cli.md for the full contract.
@@ -51,6 +55,7 @@ int main(int argc, char** argv) {
     if (command == "map") return sg::cli::runMap(args);
     if (command == "score") return sg::cli::runScore(args);
     if (command == "goodness") return sg::cli::runGoodness(args);
+    if (command == "simulate") return sg::cli::runSimulate(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';

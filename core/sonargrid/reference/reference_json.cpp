@@ -200,8 +200,8 @@ class Validator {
       fail({}, "",
            "expected a JSON object {\"format\": \"" + std::string(kReferenceFormat) + "\", ...}");
     for (const auto& [k, v] : doc.items()) {
-      if (k != "format" && k != "version" && k != "units" && k != "objects") {
-        fail({k}, k, "unknown key (expected format, version, units, objects)");
+      if (k != "format" && k != "version" && k != "units" && k != "objects" && k != "start") {
+        fail({k}, k, "unknown key (expected format, version, units, objects, start)");
       }
     }
     const auto format = doc.find("format");
@@ -226,6 +226,7 @@ class Validator {
     if (!unit)
       fail({"units"}, "units", "expected \"m\", \"cm\" or \"mm\", got " + shownJson(*units));
     map.unit = *unit;
+    if (const auto start = doc.find("start"); start != doc.end()) map.start = startPose(*start);
 
     const auto objects = doc.find("objects");
     if (objects == doc.end()) fail({}, "objects", "missing; expected an array of objects");
@@ -250,15 +251,48 @@ class Validator {
     return reference_io::shown(v.dump(-1, ' ', false, json::error_handler_t::replace), 40);
   }
 
+  StartPose startPose(const json& v) const {
+    const char* expected = "expected {\"x\": X, \"y\": Y, \"heading_deg\": DEGREES}";
+    if (!v.is_object()) fail({"start"}, "start", std::string(expected) + ", got " + shownJson(v));
+    for (const auto& [k, value] : v.items()) {
+      if (k != "x" && k != "y" && k != "heading_deg")
+        fail({"start", k}, "start." + k, "unknown key (expected x, y, heading_deg)");
+    }
+    StartPose out;
+    double* fields[] = {&out.position.x(), &out.position.y(), &out.headingDeg};
+    const char* names[] = {"x", "y", "heading_deg"};
+    for (int f = 0; f < 3; ++f) {
+      const auto it = v.find(names[f]);
+      if (it == v.end()) fail({"start"}, std::string("start.") + names[f], "missing");
+      *fields[f] = finiteNumber(*it, {"start", names[f]}, std::string("start.") + names[f]);
+    }
+    return out;
+  }
+
+  double finiteNumber(const json& v, const std::vector<std::string>& where,
+                      const std::string& field) const {
+    if (!v.is_number()) fail(where, field, "expected a number, got " + shownJson(v));
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) fail(where, field, "expected a finite number");
+    return d;
+  }
+
   ReferenceObject object(const json& o, std::size_t i) const {
     const std::string index = std::to_string(i);
     const std::string field = "objects[" + index + "]";
     if (!o.is_object())
       fail({"objects", index}, field, "expected an object {\"name\", \"closed\", \"corners\"}");
+    const bool isCircle = o.contains("radius") || o.contains("centre");
     for (const auto& [k, v] : o.items()) {
-      if (k != "name" && k != "closed" && k != "corners") {
+      const bool common = k == "name" || k == "surface" || k == "specular_limit_deg";
+      const bool shape =
+          isCircle ? (k == "centre" || k == "radius") : (k == "closed" || k == "corners");
+      if (!common && !shape) {
         fail({"objects", index, k}, field + "." + k,
-             "unknown key (expected name, closed, corners)");
+             isCircle ? "unknown key for a circle (expected name, centre, radius, surface, "
+                        "specular_limit_deg)"
+                      : "unknown key (expected name, closed, corners, surface, "
+                        "specular_limit_deg; or centre and radius for a circle)");
       }
     }
     ReferenceObject out;
@@ -268,7 +302,63 @@ class Validator {
       fail({"objects", index, "name"}, field + ".name",
            "expected a non-empty string, got " + shownJson(*name));
     }
-    out.name = name->get<std::string>();
+    if (isCircle) {
+      out = circle(o, index, field, name->get<std::string>());
+    } else {
+      out.name = name->get<std::string>();
+      polygon(o, index, field, out);
+    }
+    if (const auto surface = o.find("surface"); surface != o.end()) {
+      const auto kind =
+          surface->is_string() ? surfaceFromName(surface->get<std::string>()) : std::nullopt;
+      if (!kind) {
+        fail({"objects", index, "surface"}, field + ".surface",
+             "expected \"specular\" or \"diffuse\", got " + shownJson(*surface));
+      }
+      out.surface = *kind;
+    }
+    if (const auto limit = o.find("specular_limit_deg"); limit != o.end()) {
+      out.specularLimitDeg = finiteNumber(*limit, {"objects", index, "specular_limit_deg"},
+                                          field + ".specular_limit_deg");
+    }
+    const std::string problem = objectProblem(out);
+    if (!problem.empty()) {
+      const char* key = out.specularLimitDeg && problem.find("specular") != std::string::npos
+                            ? "specular_limit_deg"
+                        : out.circle ? "radius"
+                                     : "corners";
+      fail({"objects", index, key}, field + "." + key,
+           "object \"" + reference_io::shown(out.name) + "\": " + problem +
+               (out.circle || std::string(key) == "specular_limit_deg"
+                    ? std::string()
+                    : " (it has " + std::to_string(out.corners.size()) + ")"));
+    }
+    return out;
+  }
+
+  ReferenceObject circle(const json& o, const std::string& index, const std::string& field,
+                         const std::string& name) const {
+    ReferenceCircle c;
+    const auto centre = o.find("centre");
+    if (centre == o.end()) fail({"objects", index}, field + ".centre", "missing; expected [x, y]");
+    if (!centre->is_array() || centre->size() != 2 || !(*centre)[0].is_number() ||
+        !(*centre)[1].is_number()) {
+      fail({"objects", index, "centre"}, field + ".centre",
+           "expected [x, y] of two numbers, got " + shownJson(*centre));
+    }
+    c.centre = Eigen::Vector2d((*centre)[0].get<double>(), (*centre)[1].get<double>());
+    if (!std::isfinite(c.centre.x()) || !std::isfinite(c.centre.y()))
+      fail({"objects", index, "centre"}, field + ".centre", "the centre must be finite numbers");
+    const auto radius = o.find("radius");
+    if (radius == o.end()) fail({"objects", index}, field + ".radius", "missing");
+    c.radius = finiteNumber(*radius, {"objects", index, "radius"}, field + ".radius");
+    if (c.radius <= 0.0)
+      fail({"objects", index, "radius"}, field + ".radius", "a circle's radius must be above 0");
+    return circleObject(name, c);
+  }
+
+  void polygon(const json& o, const std::string& index, const std::string& field,
+               ReferenceObject& out) const {
     const auto closed = o.find("closed");
     if (closed == o.end())
       fail({"objects", index}, field + ".closed", "missing; expected true or false");
@@ -298,13 +388,6 @@ class Validator {
       }
       out.corners.push_back(p);
     }
-    const std::string problem = objectProblem(out);
-    if (!problem.empty()) {
-      fail({"objects", index, "corners"}, field + ".corners",
-           "object \"" + reference_io::shown(out.name) + "\": " + problem + " (it has " +
-               std::to_string(out.corners.size()) + ")");
-    }
-    return out;
   }
 
   const std::string& file_;
@@ -364,7 +447,13 @@ std::string referenceJsonText(const ReferenceMap& map) {
   out += kReferenceFormat;
   out += "\",\n  \"version\": " + std::to_string(kReferenceVersion) + ",\n  \"units\": \"";
   out += lengthUnitName(map.unit);
-  out += "\",\n  \"objects\": [";
+  out += "\",\n";
+  if (map.start) {
+    out += "  \"start\": {\"x\": " + numberText(map.start->position.x()) +
+           ", \"y\": " + numberText(map.start->position.y()) +
+           ", \"heading_deg\": " + numberText(map.start->headingDeg) + "},\n";
+  }
+  out += "  \"objects\": [";
   for (std::size_t i = 0; i < map.objects.size(); ++i) {
     const ReferenceObject& o = map.objects[i];
     const std::string problem = objectProblem(o);
@@ -384,13 +473,22 @@ std::string referenceJsonText(const ReferenceMap& map) {
                                   ": the name is not valid UTF-8");
     }
     out += i == 0 ? "\n" : ",\n";
-    out += "    {\"name\": " + name + ", \"closed\": " + (o.closed ? "true" : "false") +
-           ", \"corners\": [";
-    for (std::size_t k = 0; k < o.corners.size(); ++k) {
-      if (k != 0) out += ", ";
-      out += "[" + numberText(o.corners[k].x()) + ", " + numberText(o.corners[k].y()) + "]";
+    out += "    {\"name\": " + name;
+    if (o.circle) {
+      out += ", \"centre\": [" + numberText(o.circle->centre.x()) + ", " +
+             numberText(o.circle->centre.y()) + "], \"radius\": " + numberText(o.circle->radius);
+    } else {
+      out += ", \"closed\": " + std::string(o.closed ? "true" : "false") + ", \"corners\": [";
+      for (std::size_t k = 0; k < o.corners.size(); ++k) {
+        if (k != 0) out += ", ";
+        out += "[" + numberText(o.corners[k].x()) + ", " + numberText(o.corners[k].y()) + "]";
+      }
+      out += "]";
     }
-    out += "]}";
+    if (o.surface != Surface::Unspecified)
+      out += ", \"surface\": \"" + std::string(surfaceName(o.surface)) + "\"";
+    if (o.specularLimitDeg) out += ", \"specular_limit_deg\": " + numberText(*o.specularLimitDeg);
+    out += "}";
   }
   out += map.objects.empty() ? "]\n}\n" : "\n  ]\n}\n";
   return out;

@@ -3,6 +3,9 @@
 //   {"format": "sonargrid-reference", "version": 1, "units": "m",
 //    "objects": [{"name": "box", "closed": true, "corners": [[1.0, 1.0], [1.5, 1.0], ...]}]}
 // `units` is "m", "cm" or "mm"; corners are [x, y] in that unit. Names are unique within a file.
+// Optional (docs/formats.md, "World properties"): a circle object {"name", "centre", "radius"},
+// an object's "surface" ("specular" or "diffuse") and "specular_limit_deg", a top-level
+// "start": {"x", "y", "heading_deg"}.
 
 #include <string>
 #include <string_view>

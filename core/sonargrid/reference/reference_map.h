@@ -24,10 +24,40 @@ const char* lengthUnitName(LengthUnit unit);
 std::optional<LengthUnit> lengthUnitFromName(const std::string& name);
 double metresPerUnit(LengthUnit unit);
 
+// How an object's surface returns sound (docs/simulator.md). Scoring ignores it; the simulator
+// reads it. Unspecified takes the simulator's default (specular, at its default limit).
+enum class Surface { Unspecified, Specular, Diffuse };
+
+// "specular", "diffuse": the spelling of the JSON `surface` key.
+const char* surfaceName(Surface surface);
+std::optional<Surface> surfaceFromName(const std::string& name);
+
+// A round object (a pole), in the map's unit.
+struct ReferenceCircle {
+  Eigen::Vector2d centre{0.0, 0.0};
+  double radius = 0.0;
+};
+
+// Corners kept for a circle, so that every metric can treat it as the polygon it draws.
+inline constexpr int kCircleCorners = 16;
+
 struct ReferenceObject {
   std::string name;
   bool closed = false;  // a closed object has an edge from the last corner to the first
   std::vector<Eigen::Vector2d> corners;  // in the map's unit
+  Surface surface = Surface::Unspecified;
+  std::optional<double> specularLimitDeg{};  // only with Surface::Specular; degrees in (0, 90]
+  // A circle: `corners` then hold the regular kCircleCorners-gon inscribed in it (closed).
+  std::optional<ReferenceCircle> circle{};
+};
+
+// A circle object with its polygon corners filled in.
+ReferenceObject circleObject(std::string name, const ReferenceCircle& circle);
+
+// Where the robot starts, in the map's unit (heading in degrees, counter-clockwise from +x).
+struct StartPose {
+  Eigen::Vector2d position{0.0, 0.0};
+  double headingDeg = 0.0;
 };
 
 // What a reference raster says about one of its cells (ROS map_server trinary reading).
@@ -44,6 +74,7 @@ struct ReferenceMap {
   LengthUnit unit = LengthUnit::Metre;
   std::vector<ReferenceObject> objects;
   std::optional<ObstacleRaster> raster;
+  std::optional<StartPose> start{};
 
   double metresPerUnit() const { return sg::metresPerUnit(unit); }
   // A corner of an object in world metres.

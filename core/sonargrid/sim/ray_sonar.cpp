@@ -60,7 +60,7 @@ double standardNormal(SimRng& rng) {
 }
 
 std::optional<RayHit> castRay(std::span<const Segment> world, const Position& origin,
-                              const Position& direction) {
+                              const Position& direction, double minDistance) {
   std::optional<RayHit> nearest;
   for (const Segment& s : world) {
     // origin + t * direction = a + u * (b - a), solved with 2-D cross products.
@@ -70,17 +70,63 @@ std::optional<RayHit> castRay(std::span<const Segment> world, const Position& or
     const Position w = s.a - origin;
     const double t = cross(w, edge) / denom;
     const double u = cross(w, direction) / denom;
-    if (t < 0.0 || u < 0.0 || u > 1.0) continue;
+    if (t < minDistance || u < 0.0 || u > 1.0) continue;
     if (!nearest || t < nearest->distance) {
       // |direction x edge| = |edge| * sin(angle to the surface) = |edge| * cos(incidence).
-      nearest = RayHit{t, std::abs(denom) / edge.norm()};
+      const double length = edge.norm();
+      nearest = RayHit{t, std::abs(denom) / length, Position(-edge.y(), edge.x()) / length,
+                       s.maxIncidenceDeg};
     }
   }
   return nearest;
 }
 
+std::optional<RayHit> castRay(const SonarWorld& world, const Position& origin,
+                              const Position& direction, double minDistance) {
+  std::optional<RayHit> nearest =
+      castRay(std::span<const Segment>(world.segments), origin, direction, minDistance);
+  for (const Circle& c : world.circles) {
+    // |origin + t * direction - centre|^2 = r^2 with |direction| = 1.
+    const Position oc = origin - c.centre;
+    const double b = direction.dot(oc);
+    const double disc = b * b - (oc.squaredNorm() - c.radius * c.radius);
+    if (disc < 0.0) continue;
+    const double root = std::sqrt(disc);
+    double t = -b - root;                // entering the circle
+    if (t < minDistance) t = -b + root;  // the ray starts inside: it meets the far side
+    if (t < minDistance || (nearest && t >= nearest->distance)) continue;
+    const Position normal = (oc + t * direction) / c.radius;
+    nearest = RayHit{t, std::min(1.0, std::abs(direction.dot(normal))), normal, c.maxIncidenceDeg};
+  }
+  return nearest;
+}
+
 bool echoesBack(const RayHit& hit, const SonarPhysics& physics) {
-  return hit.cosIncidence >= std::cos(degToRad(physics.maxIncidenceDeg));
+  const double limit = hit.maxIncidenceDeg >= 0.0 ? hit.maxIncidenceDeg : physics.maxIncidenceDeg;
+  return hit.cosIncidence >= std::cos(degToRad(limit));
+}
+
+std::optional<Echo> traceRay(const SonarWorld& world, const Position& origin,
+                             const Position& direction, double maxRange,
+                             const SonarPhysics& physics) {
+  // Far below any range the sensor resolves, far above the rounding error of a hit point.
+  constexpr double kSelfHit = 1e-9;
+  Position from = origin;
+  Position dir = direction;
+  double travelled = 0.0;
+  const int bounces = physics.specularEcho == SpecularEcho::Multipath ? physics.maxBounces : 0;
+  for (int bounce = 0; bounce <= bounces; ++bounce) {
+    const std::optional<RayHit> hit = castRay(world, from, dir, bounce == 0 ? 0.0 : kSelfHit);
+    if (!hit) return std::nullopt;
+    travelled += hit->distance;
+    if (travelled >= maxRange) return std::nullopt;
+    const Position point = from + hit->distance * dir;
+    if (echoesBack(*hit, physics)) return Echo{travelled, point};
+    // Mirror reflection: the normal component of the direction changes sign.
+    dir = dir - 2.0 * dir.dot(hit->normal) * hit->normal;
+    from = point;
+  }
+  return std::nullopt;
 }
 
 double rayBearing(int i, double apertureRad, const SonarPhysics& physics) {
@@ -88,29 +134,59 @@ double rayBearing(int i, double apertureRad, const SonarPhysics& physics) {
   return -0.5 * apertureRad + apertureRad * i / (physics.raysPerCone - 1);
 }
 
-std::optional<double> coneRange(std::span<const Segment> world, const Pose2D& sensor,
-                                const SonarRing& ring, const SonarPhysics& physics) {
+std::optional<Echo> coneEcho(const SonarWorld& world, const Pose2D& sensor, const SonarRing& ring,
+                             const SonarPhysics& physics) {
   if (physics.raysPerCone < 1)
     throw std::invalid_argument("SonarPhysics: raysPerCone must be >= 1");
-  std::optional<double> nearest;
+  std::optional<Echo> nearest;
   for (int i = 0; i < physics.raysPerCone; ++i) {
     const double bearing = sensor.heading + rayBearing(i, ring.apertureRad, physics);
     const Position direction(std::cos(bearing), std::sin(bearing));
-    // A ray that glances off its nearest surface is lost: it does not go on to a farther one.
-    const std::optional<RayHit> hit = castRay(world, sensor.position, direction);
-    if (!hit || !echoesBack(*hit, physics) || hit->distance >= ring.maxRange) continue;
-    if (!nearest || hit->distance < *nearest) nearest = hit->distance;
+    const std::optional<Echo> echo =
+        traceRay(world, sensor.position, direction, ring.maxRange, physics);
+    if (echo && (!nearest || echo->range < nearest->range)) nearest = echo;
+  }
+  // Poles: the ray through the centre meets the surface head on, wherever the sensor stands.
+  for (const Circle& c : world.circles) {
+    const Position toCentre = c.centre - sensor.position;
+    const double distance = toCentre.norm();
+    if (distance <= c.radius) continue;
+    const double off = wrapAngle(std::atan2(toCentre.y(), toCentre.x()) - sensor.heading);
+    if (std::abs(off) > 0.5 * ring.apertureRad) continue;
+    const Position direction = toCentre / distance;
+    const std::optional<Echo> echo =
+        traceRay(world, sensor.position, direction, ring.maxRange, physics);
+    if (echo && (!nearest || echo->range < nearest->range)) nearest = echo;
   }
   return nearest;
 }
 
-double fireSonar(std::span<const Segment> world, const Pose2D& sensor, const SonarRing& ring,
-                 const SonarPhysics& physics, SimRng& rng) {
+std::optional<double> coneRange(const SonarWorld& world, const Pose2D& sensor,
+                                const SonarRing& ring, const SonarPhysics& physics) {
+  const std::optional<Echo> echo = coneEcho(world, sensor, ring, physics);
+  if (!echo) return std::nullopt;
+  return echo->range;
+}
+
+std::optional<double> crosstalkRange(const Echo& neighbourEcho, const Pose2D& listener,
+                                     const SonarRing& ring) {
+  const Position back = neighbourEcho.point - listener.position;
+  const double off = wrapAngle(std::atan2(back.y(), back.x()) - listener.heading);
+  if (std::abs(off) > 0.5 * ring.apertureRad) return std::nullopt;
+  const double range = 0.5 * (neighbourEcho.range + back.norm());
+  if (range >= ring.maxRange) return std::nullopt;
+  return range;
+}
+
+namespace {
+
+// The reported number for a noise-free echo (or none): misreading, noise, range window, rounding.
+double reading(std::optional<double> echo, const SonarRing& ring, const SonarPhysics& physics,
+               SimRng& rng, bool misread) {
   double range = 0.0;
-  if (misreads(physics, rng)) {
+  if (misread) {
     range = phantomRange(ring, rng);
   } else {
-    const std::optional<double> echo = coneRange(world, sensor, ring, physics);
     if (!echo) return Reading::kNoEcho;
     range = addRangeNoise(*echo, physics, rng);
   }
@@ -119,7 +195,42 @@ double fireSonar(std::span<const Segment> world, const Pose2D& sensor, const Son
   return range >= ring.maxRange ? Reading::kNoEcho : range;
 }
 
-Dataset simulateRoute(std::span<const Segment> world, std::span<const TimedPose> route,
+}  // namespace
+
+double fireSonar(const SonarWorld& world, const Pose2D& sensor, const SonarRing& ring,
+                 const SonarPhysics& physics, SimRng& rng) {
+  if (misreads(physics, rng)) return reading(std::nullopt, ring, physics, rng, true);
+  return reading(coneRange(world, sensor, ring, physics), ring, physics, rng, false);
+}
+
+std::vector<double> fireRing(const SonarWorld& world, std::span<const Pose2D> sensors,
+                             const SonarRing& ring, const SonarPhysics& physics, SimRng& rng) {
+  const std::size_t n = ring.size();
+  if (sensors.size() != n)
+    throw std::invalid_argument("fireRing: one sensor pose per sonar of the ring is needed");
+  std::vector<std::optional<Echo>> echoes(n);
+  for (std::size_t i = 0; i < n; ++i) echoes[i] = coneEcho(world, sensors[i], ring, physics);
+  std::vector<double> out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (misreads(physics, rng)) {
+      out[i] = reading(std::nullopt, ring, physics, rng, true);
+      continue;
+    }
+    std::optional<double> range;
+    if (echoes[i]) range = echoes[i]->range;
+    if (physics.crosstalkRate > 0.0 && n > 1 && uniform01(rng) < physics.crosstalkRate) {
+      const std::size_t j = uniform01(rng) < 0.5 ? (i + n - 1) % n : (i + 1) % n;
+      if (echoes[j]) {
+        const std::optional<double> heard = crosstalkRange(*echoes[j], sensors[i], ring);
+        if (heard && (!range || *heard < *range)) range = heard;
+      }
+    }
+    out[i] = reading(range, ring, physics, rng, false);
+  }
+  return out;
+}
+
+Dataset simulateRoute(const SonarWorld& world, std::span<const TimedPose> route,
                       const SonarRing& ring, const SonarPhysics& physics, std::string name) {
   Dataset out;
   out.name = std::move(name);
@@ -132,13 +243,17 @@ Dataset simulateRoute(std::span<const Segment> world, std::span<const TimedPose>
     scan.odometry = stop.pose;
     scan.truth = stop.pose;
     scan.readings.reserve(ring.size());
+    std::vector<Pose2D> sensors;
+    sensors.reserve(ring.size());
+    for (const SonarMount& m : ring.sonars) sensors.push_back(stop.pose.compose(m.pose));
+    const std::vector<double> ranges = fireRing(world, sensors, ring, physics, rng);
     for (std::size_t i = 0; i < ring.size(); ++i) {
       Reading r;
       r.sonar = static_cast<std::uint16_t>(i);
       // Kept to the microsecond, a log's finest time unit: short, exact decimals in the text log.
       r.time =
           std::round((stop.time + static_cast<double>(i) * physics.firingInterval) * 1e6) / 1e6;
-      r.range = fireSonar(world, stop.pose.compose(ring.sonars[i].pose), ring, physics, rng);
+      r.range = ranges[i];
       scan.readings.push_back(r);
     }
     out.scans.push_back(std::move(scan));
