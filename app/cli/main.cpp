@@ -27,6 +27,10 @@ commands:
   goodness --log FILE [map flags] [--second-log FILE] [--json]
                              map quality without a reference: VSDNS, derivative noise,
                              two-run comparison
+  reproduce raschke1990|osullivan|arafat --out DIR [--datasets DIR] [--json]
+      [--progress] [--sets N] [--threads N]
+                             rerun a paper's experiment on the bundled datasets: tables
+                             (Markdown, CSV) and figures (PNG) in DIR/PAPER
   help                       this text
 
 See docs/cli.md for the full contract.
@@ -51,6 +55,7 @@ int main(int argc, char** argv) {
     if (command == "map") return sg::cli::runMap(args);
     if (command == "score") return sg::cli::runScore(args);
     if (command == "goodness") return sg::cli::runGoodness(args);
+    if (command == "reproduce") return sg::cli::runReproduce(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';
