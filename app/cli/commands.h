@@ -10,5 +10,6 @@ int runMap(Arguments& args);
 int runScore(Arguments& args);
 int runGoodness(Arguments& args);
 int runSimulate(Arguments& args);
+int runReproduce(Arguments& args);
 
 }  // namespace sg::cli

@@ -31,6 +31,10 @@ commands:
       --route in-motion|stop-and-scan|u-turn [--route-file FILE] [--stops N]
       [--duration S] [--seed N] [--drift on|off] --out LOG.sglog
                              simulate a sonar log in a reference-map world
+  reproduce raschke1990|osullivan|arafat --out DIR [--datasets DIR] [--json]
+      [--progress] [--sets N] [--threads N]
+                             rerun a paper's experiment on the bundled datasets: tables
+                             (Markdown, CSV) and figures (PNG) in DIR/PAPER
   help                       this text
 
 See docs/cli.md for the full contract.
@@ -56,6 +60,7 @@ int main(int argc, char** argv) {
     if (command == "score") return sg::cli::runScore(args);
     if (command == "goodness") return sg::cli::runGoodness(args);
     if (command == "simulate") return sg::cli::runSimulate(args);
+    if (command == "reproduce") return sg::cli::runReproduce(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';

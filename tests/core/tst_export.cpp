@@ -99,6 +99,7 @@ class TstExport : public QObject {
   void pngScaleRepeatsPixels();
   void pngUnobservedCellsAreNotSpecial();
   void pngLegendWidensNarrowMap();
+  void pngOverlayDrawsWorldLines();
   void pngLegendFollowsWideMap();
   void pngFileHasSignatureAndSize();
   void pngRejectsBadInput();
@@ -204,6 +205,32 @@ void TstExport::pngUnobservedCellsAreNotSpecial() {
   QVERIFY(a.pixels == b.pixels);
   sg::OccupancyMap empty = makeMap(2, 1);                            // all level 8, unobserved
   QCOMPARE(sg::renderMapImage(empty, options).at(1, 0), grey(119));  // 255 - 17 * 8
+}
+
+// A 10 x 10 map of 0.1 m cells from the origin at 4 pixels per cell: the world line y = 0.5 m
+// from x = 0.05 to 0.95 m lands on pixel row 40 − 0.5 / 0.1 · 4 = 20 (north up) and is drawn in
+// the overlay colour; a pixel two cells away keeps the palette's level-8 colour, and the legend
+// strip below the map is not drawn on.
+void TstExport::pngOverlayDrawsWorldLines() {
+  sg::OccupancyMap map = makeMap(10, 10);
+  map.spec.cellSize = 0.1;
+  map.spec.origin = sg::Position(0.0, 0.0);
+  sg::PngOptions o;
+  o.scale = 4;
+  o.lines.push_back({sg::Position(0.05, 0.5), sg::Position(0.95, 0.5)});
+  o.overlayColour = sg::Rgb{1, 2, 3};
+  sg::PngOptions bare;
+  bare.scale = 4;
+  const sg::RgbImage plain = sg::renderMapImage(map, bare);
+  const sg::RgbImage drawn = sg::renderMapImage(map, o);
+  QCOMPARE(drawn.at(20, 20), (sg::Rgb{1, 2, 3}));
+  QCOMPARE(drawn.at(20, 28), plain.at(20, 28));
+  QCOMPARE(drawn.at(20, 28), sg::defaultLevelPalette()[8]);
+  o.legend = true;
+  o.lines = {{sg::Position(0.5, 0.5), sg::Position(0.5, -5.0)}};  // runs off the map's bottom
+  const sg::RgbImage legend = sg::renderMapImage(map, o);
+  QCOMPARE(legend.at(20, 30), (sg::Rgb{1, 2, 3}));
+  QVERIFY(legend.at(20, 41) != (sg::Rgb{1, 2, 3}));
 }
 
 void TstExport::pngLegendWidensNarrowMap() {

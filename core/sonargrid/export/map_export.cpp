@@ -139,6 +139,26 @@ void drawLegend(cv::Mat& image, int top, const LegendLayout& l, const LevelPalet
   }
 }
 
+// Lines and markers in world metres, anti-aliased at sub-pixel precision (4 fractional bits), and
+// clipped to the map so that they never run into the legend.
+void drawOverlay(cv::Mat& image, int mw, int mh, const GridSpec& spec, const PngOptions& options) {
+  constexpr int kShift = 4;
+  const double perMetre = options.scale / spec.cellSize * (1 << kShift);
+  auto pixel = [&](const Position& p) {
+    return cv::Point(static_cast<int>(std::lround((p.x() - spec.origin.x()) * perMetre)),
+                     static_cast<int>(std::lround(mh * double(1 << kShift) -
+                                                  (p.y() - spec.origin.y()) * perMetre)));
+  };
+  cv::Mat area = image(cv::Rect(0, 0, mw, mh));
+  const cv::Scalar colour = bgr(options.overlayColour);
+  const int thickness = std::max(1, options.scale / 3);
+  for (const auto& [a, b] : options.lines)
+    cv::line(area, pixel(a), pixel(b), colour, thickness, cv::LINE_AA, kShift);
+  const int radius = std::max(2, options.scale) << kShift;
+  for (const Position& m : options.markers)
+    cv::circle(area, pixel(m), radius, colour, thickness, cv::LINE_AA, kShift);
+}
+
 cv::Mat renderBgr(const OccupancyMap& map, const PngOptions& options) {
   constexpr const char* what = "map PNG";
   if (options.scale < 1)
@@ -187,6 +207,7 @@ cv::Mat renderBgr(const OccupancyMap& map, const PngOptions& options) {
       std::copy_n(first, mw, image.ptr<cv::Vec3b>(block * options.scale + r));
   }
 
+  if (!options.lines.empty() || !options.markers.empty()) drawOverlay(image, mw, mh, spec, options);
   if (options.legend) drawLegend(image, mh, legend, palette);
   return image;
 }

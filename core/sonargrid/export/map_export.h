@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sonargrid/export/palette.h"
@@ -15,6 +16,11 @@ struct PngOptions {
   int scale = 1;        // pixels per cell
   bool legend = false;  // a strip with the 16 levels and their numbers below the map
   const LevelPalette* palette = nullptr;  // nullptr: defaultLevelPalette()
+  // Drawn over the cells, in world metres: e.g. a reference map's edges (paper 000 Fig. 4 overlays
+  // the obstacles as solid lines) and small circles at the robot's stops.
+  std::vector<std::pair<Position, Position>> lines;
+  std::vector<Position> markers;
+  Rgb overlayColour{0, 0, 0};
 };
 
 // The exact pixels writeMapPng puts in the PNG (legend included), so that tests and callers without

@@ -1,0 +1,262 @@
+// `sonargrid-cli reproduce raschke1990|osullivan|arafat --out DIR`: reruns a paper's experiment on
+// the bundled datasets (docs/cli.md, docs/reproduction.md) and writes its tables and figures.
+// This file parses the arguments and holds what the three experiments share.
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "commands.h"
+#include "map_options.h"
+#include "reproduce.h"
+#include "sonargrid/export/map_export.h"
+#include "sonargrid/reference/read_reference.h"
+
+namespace sg::cli {
+namespace reproduce {
+
+Dataset loadDataset(const fs::path& path) {
+  if (!fs::exists(path))
+    throw InputError(path.string() +
+                     ": dataset file not found (give the datasets folder with --datasets DIR)");
+  return loadLog(path.string());
+}
+
+ReferenceMap loadReferenceMap(const fs::path& path) {
+  if (!fs::exists(path))
+    throw InputError(path.string() +
+                     ": reference map not found (give the datasets folder with --datasets DIR)");
+  try {
+    return readReference(path.string());
+  } catch (const LogError& e) {
+    throw InputError(e.what());
+  }
+}
+
+GridSpec experimentGrid(const std::vector<const Dataset*>& logs, const ReferenceMap& reference,
+                        double cell, PoseSource pose) {
+  Position lo(std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
+  Position hi = -lo;
+  for (const Dataset* d : logs) {
+    const GridSpec g = d->fittingGrid(pose, cell, 0.0);
+    lo = lo.cwiseMin(g.origin);
+    hi = hi.cwiseMax(g.origin + Position(g.widthMetres(), g.heightMetres()));
+  }
+  for (const ReferenceObject& o : reference.objects) {
+    for (std::size_t k = 0; k < o.corners.size(); ++k) {
+      lo = lo.cwiseMin(reference.cornerMetres(o, k));
+      hi = hi.cwiseMax(reference.cornerMetres(o, k));
+    }
+  }
+  return GridSpec::covering(lo, hi, cell, 0.5);
+}
+
+MapperSettings settingsFor(const std::string& model, const std::string& rule, const SonarRing& ring,
+                           const std::vector<std::pair<std::string, double>>& overrides) {
+  MapperSettings s;
+  s.model = model;
+  s.rule = rule;
+  s.pose = PoseSource::Odometry;  // the maps the robot itself could build (docs/reproduction.md)
+  s.parameters = defaultParameters(model, rule);
+  if (s.parameters.has("omega")) s.parameters.set("omega", radToDeg(ring.apertureRad));
+  for (const auto& [name, value] : overrides) s.parameters.set(name, value);
+  return s;
+}
+
+OccupancyMap mapLog(const Dataset& data, const fs::path& path, const GridSpec& grid,
+                    const MapperSettings& settings, FootprintObserver* observer) {
+  try {
+    Mapper mapper(data.ring, grid, settings);
+    mapper.setObserver(observer);
+    mapper.mapDataset(data);
+    return mapper.snapshot();
+  } catch (const MapperError& e) {
+    throw InputError(path.string() + ": " + e.what());
+  }
+}
+
+void writeMapWithReference(const OccupancyMap& map, const ReferenceMap& reference,
+                           const fs::path& path, const std::vector<Position>& markers) {
+  PngOptions options;
+  options.scale = 4;
+  options.legend = true;
+  for (const ReferenceObject& o : reference.objects) {
+    for (const auto& edge : reference.edgesMetres(o)) options.lines.push_back(edge);
+  }
+  options.markers = markers;
+  writeMapPng(map, path.string(), options);
+}
+
+fs::path paperDirectory(const Context& ctx, const std::string& name) {
+  const fs::path dir = ctx.out / name;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw std::runtime_error("cannot create '" + dir.string() + "': " + ec.message());
+  return dir;
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
+}
+
+std::string Table::markdown() const {
+  auto line = [](const std::vector<std::string>& cells) {
+    std::string s = "|";
+    for (const std::string& c : cells) s += " " + c + " |";
+    return s + "\n";
+  };
+  std::string out = line(header);
+  out += "|";
+  for (std::size_t k = 0; k < header.size(); ++k) out += k == 0 ? "---|" : "---:|";
+  out += "\n";
+  for (const auto& r : rows) out += line(r);
+  return out;
+}
+
+std::string Table::csv() const {
+  auto line = [](const std::vector<std::string>& cells) {
+    std::string s;
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      const std::string& c = cells[k];
+      const bool quote = c.find_first_of(",\"\n") != std::string::npos;
+      std::string q = c;
+      if (quote) {
+        q.clear();
+        for (char ch : c) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+        q = "\"" + q + "\"";
+      }
+      s += (k ? "," : "") + q;
+    }
+    return s + "\n";
+  };
+  std::string out = line(header);
+  for (const auto& r : rows) out += line(r);
+  return out;
+}
+
+std::string exact(const std::optional<double>& v) {
+  if (!v) return "";
+  std::array<char, 32> buf{};
+  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), *v);
+  return std::string(buf.data(), r.ptr);
+}
+
+std::string fixed(const std::optional<double>& v, int decimals) {
+  if (!v) return "—";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(decimals) << *v;
+  return s.str();
+}
+
+Json orNull(const std::optional<double>& v) {
+  return v ? Json(*v) : Json(nullptr);
+}
+
+MeanSd meanSd(const std::vector<std::optional<double>>& values) {
+  MeanSd r;
+  double sum = 0.0;
+  for (const auto& v : values) {
+    if (v) {
+      sum += *v;
+      ++r.n;
+    }
+  }
+  if (r.n == 0) return r;
+  const double mean = sum / static_cast<double>(r.n);
+  r.mean = mean;
+  if (r.n < 2) return r;
+  double ss = 0.0;
+  for (const auto& v : values) {
+    if (v) ss += (*v - mean) * (*v - mean);
+  }
+  r.sd = std::sqrt(ss / static_cast<double>(r.n - 1));
+  return r;
+}
+
+void reportProgress(const Context& ctx, const std::string& what, std::size_t done,
+                    std::size_t total) {
+  if (!ctx.progress) return;
+  std::cerr << "\r" << what << " " << done << "/" << total << (done == total ? "\n" : "")
+            << std::flush;
+}
+
+}  // namespace reproduce
+
+namespace {
+
+// Where the bundled datasets are when --datasets is not given: the source tree's (a build run
+// from its tree), then the installed copy.
+reproduce::fs::path defaultDatasets() {
+  namespace fs = reproduce::fs;
+#ifdef SONARGRID_SOURCE_DATASETS
+  if (fs::is_directory(SONARGRID_SOURCE_DATASETS)) return SONARGRID_SOURCE_DATASETS;
+#endif
+#ifdef SONARGRID_INSTALLED_DATASETS
+  if (fs::is_directory(SONARGRID_INSTALLED_DATASETS)) return SONARGRID_INSTALLED_DATASETS;
+#endif
+  throw InputError("no bundled datasets folder found; give one with --datasets DIR");
+}
+
+}  // namespace
+
+int runReproduce(Arguments& args) {
+  namespace fs = reproduce::fs;
+  std::optional<std::string> paper;
+  for (const char* name : {"raschke1990", "osullivan", "arafat"}) {
+    if (!args.flag(name)) continue;
+    if (paper) throw UsageError("reproduce takes one paper, got " + *paper + " and " + name);
+    paper = name;
+  }
+  reproduce::Context ctx;
+  ctx.out = args.required("--out");
+  const std::optional<std::string> datasets = args.value("--datasets");
+  const bool json = args.flag("--json");
+  const bool progress = args.flag("--progress");
+  ctx.sets = static_cast<std::size_t>(args.integer("--sets", 0, 0, 1440));
+  ctx.threads = static_cast<unsigned>(args.integer("--threads", 0, 0, 256));
+  if (!paper) {
+    // A word left over is most likely a misspelt paper; finish() names it.
+    try {
+      args.finish();
+    } catch (const UsageError& e) {
+      throw UsageError(std::string(e.what()) +
+                       "; reproduce takes a paper: raschke1990, osullivan or arafat");
+    }
+    throw UsageError("reproduce needs a paper: raschke1990, osullivan or arafat");
+  }
+  args.finish();
+  if (*paper != "arafat" && (ctx.sets != 0 || ctx.threads != 0))
+    throw UsageError("--sets and --threads shape the arafat sweep only");
+  ctx.datasets = datasets ? fs::path(*datasets) : defaultDatasets();
+  if (!fs::is_directory(ctx.datasets))
+    throw InputError("--datasets " + ctx.datasets.string() + ": not a directory");
+  // Progress is for a person watching: on a terminal, or when asked; never in the way of --json.
+  ctx.progress = progress || isatty(STDERR_FILENO) == 1;
+
+  reproduce::Json summary = reproduce::Json::object();
+  if (*paper == "raschke1990") summary["raschke1990"] = reproduce::runRaschke1990(ctx);
+  if (*paper == "osullivan") summary["osullivan"] = reproduce::runOSullivan(ctx);
+  if (*paper == "arafat") summary["arafat"] = reproduce::runArafat(ctx);
+
+  if (json) {
+    std::cout << summary.dump() << '\n';
+  } else {
+    std::cout << "wrote " << (ctx.out / *paper).string()
+              << "/ (tables in *.md and *.csv, figures in *.png)\n"
+              << summary.dump(2) << '\n';
+  }
+  return 0;
+}
+
+}  // namespace sg::cli
