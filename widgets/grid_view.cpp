@@ -102,6 +102,7 @@ void GridView::setMap(std::shared_ptr<const OccupancyMap> map) {
   if (!sameGrid && scene_.map) {
     followFit_ = true;
     view_ = ViewTransform::fitting(scene_.map->spec, size());
+    refresh(false);  // the overlays move with the view
     emit viewChanged();
   }
   refresh(true);

@@ -5,6 +5,8 @@
 
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QPixmap>
+#include <QScreen>
 #include <QTimer>
 #include <cmath>
 #include <iostream>
@@ -149,7 +151,11 @@ int main(int argc, char** argv) {
     // Let the window lay out and paint the new map once before grabbing it.
     for (int i = 0; i < 5; ++i) QApplication::processEvents(QEventLoop::AllEvents, 20);
     const QString file = parser.value("screenshot");
-    if (!window.grab().save(file)) {
+    // On a real display, take the pixels the X server shows (what the user sees, the OpenGL
+    // surface included); elsewhere let the widgets render themselves.
+    const bool onScreen = QGuiApplication::platformName() == QLatin1String("xcb");
+    const QPixmap shot = onScreen ? window.screen()->grabWindow(window.winId()) : window.grab();
+    if (!shot.save(file)) {
       std::cerr << "sonargrid: cannot write " << file.toStdString() << '\n';
       return 1;
     }

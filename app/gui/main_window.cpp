@@ -409,6 +409,7 @@ bool MainWindow::openLog(const QString& path, bool quiet) {
     const QSignalBlocker block(timeline_);
     timeline_->setScanTimes(std::move(times), end);
   }
+  hoverLabel_->setText(tr("Hover over the grid to read a cell; drag to pan, wheel to zoom."));
   showSettings();
   remap_->start(data_, cellSize_, settings_, timeline_->time());
   return true;
