@@ -1,10 +1,16 @@
 #!/usr/bin/env bash
-# Quick start, first command: installs what is missing, builds, and maps the bundled room log.
-# (The desktop app arrives with issue 5; until then the CLI builds the map and writes a PNG.)
+# Quick start, first command: installs what is missing, builds, maps the bundled room log with the
+# CLI, and opens the desktop app on the same log, already mapped. Without a display it saves a
+# screenshot of the app instead (offscreen platform).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash .ci/build.sh
 mkdir -p build/out
 build/app/cli/sonargrid-cli map --log datasets/room/room.sglog --pose truth \
   --model himm --rule himm --cell 0.05 --png build/out/room-himm.png --legend --scale 4
-echo "Open build/out/room-himm.png to see the map."
+app=(build/app/gui/sonargrid datasets/room/room.sglog --pose truth --model himm --rule himm)
+if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
+  exec "${app[@]}"
+fi
+QT_QPA_PLATFORM=offscreen "${app[@]}" --screenshot build/out/sonargrid-window.png
+echo "No display: the app's window is in build/out/sonargrid-window.png, the map in build/out/room-himm.png."

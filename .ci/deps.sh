@@ -10,6 +10,11 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev  # distance transform, PNG
   nlohmann-json3-dev                        # JSON for the CLI and reference maps
   libbenchmark-dev                          # Google Benchmark (tests/bench)
+  libqt6opengl6-dev                         # Qt 6 OpenGL / OpenGLWidgets (the grid view)
+  qt6-svg-dev                               # QSvgGenerator (SVG export of the view)
+  libgl-dev                                 # OpenGL headers for the grid view
+  libgl1-mesa-dri                           # Mesa software rendering for the GL tests
+  xvfb xauth                                # xvfb-run for the GL tests (ctest label gl)
 )
 
 missing=()

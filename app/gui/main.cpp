@@ -1,0 +1,166 @@
+// sonargrid: the desktop app. Only the command line lives here; the window is main_window.cpp.
+//
+//   sonargrid [LOG] [--reference REF] [--model M --rule R --set k=v ...] [--pose odom|truth]
+//             [--cell METRES] [--raster] [--screenshot FILE]
+
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QPixmap>
+#include <QScreen>
+#include <QTimer>
+#include <cmath>
+#include <iostream>
+
+#include "main_window.h"
+#include "sonargrid/models/sensor_model.h"
+#include "sonargrid/rules/update_rule.h"
+
+namespace {
+
+struct UsageError {
+  QString message;
+};
+
+QString joined(const std::vector<std::string>& names) {
+  QStringList out;
+  for (const std::string& n : names) out << QString::fromStdString(n);
+  return out.join(QStringLiteral(", "));
+}
+
+// Model, rule, pose and --set values on top of what the user chose last time.
+sg::MapperSettings settingsFrom(const QCommandLineParser& args) {
+  sg::MapperSettings s = sg::app::MainWindow::lastSettings();
+  const bool newPair = args.isSet("model") || args.isSet("rule");
+  if (args.isSet("model")) s.model = args.value("model").toStdString();
+  if (args.isSet("rule")) s.rule = args.value("rule").toStdString();
+  if (!sg::makeSensorModel(s.model))
+    throw UsageError{QStringLiteral("unknown --model '%1'; choose one of %2")
+                         .arg(QString::fromStdString(s.model), joined(sg::sensorModelNames()))};
+  if (!sg::makeUpdateRule(s.rule))
+    throw UsageError{QStringLiteral("unknown --rule '%1'; choose one of %2")
+                         .arg(QString::fromStdString(s.rule), joined(sg::updateRuleNames()))};
+  const sg::Compatibility c = sg::compatibility(s.model, s.rule);
+  if (!c.allowed)
+    throw UsageError{QStringLiteral("model '%1' cannot be used with rule '%2': %3")
+                         .arg(QString::fromStdString(s.model), QString::fromStdString(s.rule),
+                              QString::fromStdString(c.reason))};
+  if (newPair) s.parameters = sg::defaultParameters(s.model, s.rule);
+  QStringList seen;
+  for (const QString& kv : args.values("set")) {
+    const qsizetype eq = kv.indexOf('=');
+    if (eq <= 0) throw UsageError{QStringLiteral("--set expects NAME=VALUE, got '%1'").arg(kv)};
+    const QString name = kv.left(eq);
+    if (seen.contains(name)) throw UsageError{QStringLiteral("--set %1 is given twice").arg(name)};
+    seen << name;
+    bool ok = false;
+    const double value = kv.mid(eq + 1).toDouble(&ok);
+    if (!ok || !std::isfinite(value))
+      throw UsageError{QStringLiteral("--set %1: '%2' is not a number").arg(name, kv.mid(eq + 1))};
+    try {
+      s.parameters.set(name.toStdString(), value);
+    } catch (const sg::ParameterError& e) {
+      throw UsageError{QStringLiteral("--set: %1").arg(QString::fromUtf8(e.what()))};
+    }
+  }
+  if (args.isSet("pose")) {
+    const QString pose = args.value("pose");
+    if (pose == QLatin1String("truth"))
+      s.pose = sg::PoseSource::Truth;
+    else if (pose == QLatin1String("odom"))
+      s.pose = sg::PoseSource::Odometry;
+    else
+      throw UsageError{QStringLiteral("--pose takes odom or truth, got '%1'").arg(pose)};
+  }
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  QApplication app(argc, argv);
+  QApplication::setOrganizationName(QStringLiteral("SonarGrid"));
+  QApplication::setApplicationName(QStringLiteral("sonargrid"));
+  QApplication::setApplicationDisplayName(QStringLiteral("SonarGrid"));
+  QApplication::setApplicationVersion(QStringLiteral(SONARGRID_VERSION));
+  QApplication::setDesktopFileName(QStringLiteral("sonargrid"));
+
+  QCommandLineParser parser;
+  parser.setApplicationDescription(
+      QStringLiteral("SonarGrid: build and compare sonar occupancy grids."));
+  parser.addHelpOption();
+  parser.addVersionOption();
+  parser.addPositionalArgument(QStringLiteral("LOG"), QStringLiteral("A .sglog log to open."),
+                               QStringLiteral("[LOG]"));
+  parser.addOptions({
+      {QStringLiteral("reference"), QStringLiteral("Reference map (.json, .map, .yaml)."),
+       QStringLiteral("REF")},
+      {QStringLiteral("model"), QStringLiteral("Sensor model (see sonargrid-cli models)."),
+       QStringLiteral("M")},
+      {QStringLiteral("rule"), QStringLiteral("Update rule."), QStringLiteral("R")},
+      {QStringLiteral("set"), QStringLiteral("A parameter value; repeat for several."),
+       QStringLiteral("NAME=VALUE")},
+      {QStringLiteral("pose"), QStringLiteral("Pose to map with: odom or truth."),
+       QStringLiteral("SOURCE")},
+      {QStringLiteral("cell"), QStringLiteral("Cell size in metres (default 0.05)."),
+       QStringLiteral("METRES")},
+      {QStringLiteral("raster"), QStringLiteral("Draw the grid without OpenGL.")},
+      {QStringLiteral("screenshot"),
+       QStringLiteral("Load, map, save a picture of the window to FILE and exit."),
+       QStringLiteral("FILE")},
+  });
+  parser.process(app);
+
+  sg::MapperSettings settings;
+  double cell = sg::app::MainWindow::lastCellSize();
+  try {
+    if (parser.positionalArguments().size() > 1)
+      throw UsageError{QStringLiteral("give at most one LOG")};
+    settings = settingsFrom(parser);
+    if (parser.isSet("cell")) {
+      bool ok = false;
+      cell = parser.value("cell").toDouble(&ok);
+      if (!ok || !(cell >= 0.005 && cell <= 1.0))
+        throw UsageError{QStringLiteral("--cell takes metres in [0.005, 1], got '%1'")
+                             .arg(parser.value("cell"))};
+    }
+    if (parser.isSet("screenshot") && parser.positionalArguments().isEmpty())
+      throw UsageError{QStringLiteral("--screenshot needs a LOG to map")};
+  } catch (const UsageError& e) {
+    std::cerr << "sonargrid: " << e.message.toStdString() << '\n';
+    return 2;
+  }
+
+  const bool screenshot = parser.isSet("screenshot");
+  sg::app::MainWindow window(parser.isSet("raster") ? sg::ui::GridView::Backend::Raster
+                                                    : sg::ui::GridView::Backend::Automatic);
+  if (screenshot) window.resize(1280, 800);
+  window.setCellSize(cell);
+  window.setMapperSettings(settings);
+  if (parser.isSet("reference") && !window.openReference(parser.value("reference"), screenshot))
+    if (screenshot) return 2;
+  if (!parser.positionalArguments().isEmpty() &&
+      !window.openLog(parser.positionalArguments().front(), screenshot))
+    if (screenshot) return 2;
+  window.show();
+
+  if (screenshot) {
+    if (!window.waitForMap(120000)) {
+      std::cerr << "sonargrid: mapping did not finish\n";
+      return 1;
+    }
+    // Let the window lay out and paint the new map once before grabbing it.
+    for (int i = 0; i < 5; ++i) QApplication::processEvents(QEventLoop::AllEvents, 20);
+    const QString file = parser.value("screenshot");
+    // On a real display, take the pixels the X server shows (what the user sees, the OpenGL
+    // surface included); elsewhere let the widgets render themselves.
+    const bool onScreen = QGuiApplication::platformName() == QLatin1String("xcb");
+    const QPixmap shot = onScreen ? window.screen()->grabWindow(window.winId()) : window.grab();
+    if (!shot.save(file)) {
+      std::cerr << "sonargrid: cannot write " << file.toStdString() << '\n';
+      return 1;
+    }
+    std::cout << "wrote " << file.toStdString() << '\n';
+    return 0;
+  }
+  return app.exec();
+}

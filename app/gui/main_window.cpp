@@ -1,0 +1,708 @@
+#include "main_window.h"
+
+#include <QAction>
+#include <QActionGroup>
+#include <QApplication>
+#include <QCloseEvent>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDir>
+#include <QDockWidget>
+#include <QDragEnterEvent>
+#include <QElapsedTimer>
+#include <QFile>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QHeaderView>
+#include <QLabel>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QPainter>
+#include <QSettings>
+#include <QStatusBar>
+#include <QSvgGenerator>
+#include <QTableWidget>
+#include <QTextBrowser>
+#include <QVBoxLayout>
+#include <cmath>
+#include <iostream>
+
+#include "datasets_location.h"
+#include "remap_controller.h"
+#include "sonargrid/export/map_export.h"
+#include "sonargrid/io/sglog.h"
+#include "sonargrid/models/sensor_model.h"
+#include "sonargrid/reference/read_reference.h"
+#include "sonargrid/rules/update_rule.h"
+#include "timeline.h"
+
+// The window's resources live in this static library; a static library's resource initialiser
+// must be called by name (and outside any namespace).
+static void initialiseResources() {
+  Q_INIT_RESOURCE(sonargrid);
+}
+
+namespace sg::app {
+namespace {
+
+constexpr int kMaxRecent = 8;
+
+QString poseName(PoseSource p) {
+  return p == PoseSource::Truth ? QStringLiteral("truth") : QStringLiteral("odom");
+}
+
+bool isReferenceFile(const QString& path) {
+  const QString suffix = QFileInfo(path).suffix().toLower();
+  return suffix == QLatin1String("json") || suffix == QLatin1String("map") ||
+         suffix == QLatin1String("yaml") || suffix == QLatin1String("yml");
+}
+
+// Model and rule parameters at their defaults, then every value of `previous` that the new pair
+// still declares: switching the rule keeps the model's tuning.
+ParameterSet carryParameters(const std::string& model, const std::string& rule,
+                             const ParameterSet& previous) {
+  ParameterSet out = defaultParameters(model, rule);
+  for (const auto& [name, value] : previous.values())
+    if (out.has(name)) out.set(name, value);
+  return out;
+}
+
+}  // namespace
+
+MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
+    : QMainWindow(parent),
+      view_(new ui::GridView(backend, this)),
+      remap_(new ui::RemapController(this)),
+      hoverLabel_(new QLabel(this)),
+      remapLabel_(new QLabel(this)) {
+  initialiseResources();
+  setWindowIcon(QIcon(QStringLiteral(":/sonargrid/sonargrid.svg")));
+  setCentralWidget(view_);
+  setAcceptDrops(true);
+  settings_ = lastSettings();
+  cellSize_ = lastCellSize();
+
+  statusBar()->addWidget(hoverLabel_, 1);
+  statusBar()->addPermanentWidget(remapLabel_);
+  hoverLabel_->setText(tr("Open a log (Ctrl+O) or drop one on the window."));
+
+  createActions();
+  createDocks();
+  createMenus();
+  restoreWindowState();
+
+  connect(view_, &ui::GridView::hoverText, hoverLabel_, &QLabel::setText);
+  connect(remap_, &ui::RemapController::mapped, this,
+          [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64, bool) {
+            view_->setMap(std::move(map));
+            onMapped(ms);
+          });
+  connect(remap_, &ui::RemapController::failed, this, [this](const QString& message, quint64) {
+    remapLabel_->setText(tr("mapping failed"));
+    reportError(tr("Mapping failed"), logPath_ + QStringLiteral(": ") + message, false);
+  });
+  connect(remap_, &ui::RemapController::busyChanged, this, [this](bool busy) {
+    if (busy) remapLabel_->setText(tr("mapping…"));
+  });
+  connect(timeline_, &ui::Timeline::timeChanged, this, &MainWindow::onTimeChanged);
+  connect(timeline_, &ui::Timeline::playingChanged, this,
+          [this](bool playing) { playAction_->setChecked(playing); });
+  updateTitle();
+}
+
+MainWindow::~MainWindow() = default;
+
+sg::MapperSettings MainWindow::lastSettings() {
+  QSettings s;
+  sg::MapperSettings out;
+  const std::string model = s.value("mapping/model", "himm").toString().toStdString();
+  const std::string rule = s.value("mapping/rule", "himm").toString().toStdString();
+  if (makeSensorModel(model) && makeUpdateRule(rule) && compatibility(model, rule).allowed) {
+    out.model = model;
+    out.rule = rule;
+  } else {
+    out.model = "himm";
+    out.rule = "himm";
+  }
+  out.parameters = defaultParameters(out.model, out.rule);
+  s.beginGroup("mapping/parameters");
+  for (const QString& key : s.childKeys()) {
+    try {
+      if (out.parameters.has(key.toStdString()))
+        out.parameters.set(key.toStdString(), s.value(key).toDouble());
+    } catch (const ParameterError&) {
+      // A value saved by another version may be out of today's range: keep the default.
+    }
+  }
+  s.endGroup();
+  out.pose = s.value("mapping/pose").toString() == QLatin1String("truth") ? PoseSource::Truth
+                                                                          : PoseSource::Odometry;
+  return out;
+}
+
+double MainWindow::lastCellSize() {
+  const double c = QSettings().value("mapping/cell", 0.05).toDouble();
+  return c >= 0.005 && c <= 1.0 ? c : 0.05;
+}
+
+void MainWindow::createActions() {
+  openAction_ = new QAction(tr("&Open Log…"), this);
+  openAction_->setShortcut(QKeySequence::Open);
+  connect(openAction_, &QAction::triggered, this, &MainWindow::openLogDialog);
+  openReferenceAction_ = new QAction(tr("Open &Reference Map…"), this);
+  openReferenceAction_->setShortcut(QKeySequence(tr("Ctrl+Shift+O")));
+  connect(openReferenceAction_, &QAction::triggered, this, &MainWindow::openReferenceDialog);
+  exportViewPngAction_ = new QAction(tr("Export View as &PNG…"), this);
+  exportViewPngAction_->setShortcut(QKeySequence(tr("Ctrl+E")));
+  connect(exportViewPngAction_, &QAction::triggered, this, &MainWindow::exportViewPng);
+  exportViewSvgAction_ = new QAction(tr("Export View as &SVG…"), this);
+  exportViewSvgAction_->setShortcut(QKeySequence(tr("Ctrl+Shift+E")));
+  connect(exportViewSvgAction_, &QAction::triggered, this, &MainWindow::exportViewSvg);
+  exportMapPngAction_ = new QAction(tr("Export &Map as PNG…"), this);
+  connect(exportMapPngAction_, &QAction::triggered, this, &MainWindow::exportMapPng);
+  exportRosAction_ = new QAction(tr("Export Map as &ROS map_server…"), this);
+  connect(exportRosAction_, &QAction::triggered, this, &MainWindow::exportRosMap);
+
+  fitAction_ = new QAction(tr("&Fit to Map"), this);
+  fitAction_->setShortcut(QKeySequence(tr("Ctrl+0")));
+  connect(fitAction_, &QAction::triggered, view_, &ui::GridView::fitToMap);
+
+  const std::pair<ui::Overlay, QString> overlays[] = {
+      {ui::Overlay::Reference, tr("&Reference Map")},
+      {ui::Overlay::Path, tr("Robot &Path")},
+      {ui::Overlay::Robot, tr("R&obot")},
+      {ui::Overlay::Beams, tr("Current &Beams")},
+      {ui::Overlay::Ring, tr("Sonar R&ing")},
+      {ui::Overlay::Legend, tr("&Legend")}};
+  const auto saved = QSettings().value("view/overlays", int(ui::kAllOverlays)).toInt();
+  view_->setOverlays(ui::Overlays::fromInt(saved));
+  int key = 1;
+  for (const auto& [overlay, title] : overlays) {
+    auto* a = new QAction(title, this);
+    a->setCheckable(true);
+    a->setChecked(view_->overlays().testFlag(overlay));
+    a->setShortcut(QKeySequence(QStringLiteral("Alt+%1").arg(key++)));
+    connect(a, &QAction::toggled, this, [this, o = overlay](bool on) {
+      view_->setOverlay(o, on);
+      QSettings().setValue("view/overlays", int(view_->overlays().toInt()));
+    });
+    overlayActions_ << a;
+  }
+
+  playAction_ = new QAction(tr("&Play / Pause"), this);
+  playAction_->setCheckable(true);
+  playAction_->setShortcut(QKeySequence(Qt::Key_Space));
+  stepForwardAction_ = new QAction(tr("&Next Scan"), this);
+  stepForwardAction_->setShortcut(QKeySequence(Qt::Key_Period));
+  stepBackAction_ = new QAction(tr("Pre&vious Scan"), this);
+  stepBackAction_->setShortcut(QKeySequence(Qt::Key_Comma));
+}
+
+void MainWindow::createDocks() {
+  timeline_ = new ui::Timeline(this);
+  auto* timelineDock = new QDockWidget(tr("Timeline"), this);
+  timelineDock->setObjectName(QStringLiteral("timelineDock"));
+  timelineDock->setWidget(timeline_);
+  timelineDock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable |
+                            QDockWidget::DockWidgetClosable);
+  addDockWidget(Qt::BottomDockWidgetArea, timelineDock);
+  connect(playAction_, &QAction::toggled, timeline_, &ui::Timeline::setPlaying);
+  connect(stepForwardAction_, &QAction::triggered, timeline_, &ui::Timeline::stepForward);
+  connect(stepBackAction_, &QAction::triggered, timeline_, &ui::Timeline::stepBackward);
+
+  summary_ = new QLabel(this);
+  summary_->setTextFormat(Qt::RichText);
+  summary_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
+  summary_->setMargin(8);
+  summary_->setMinimumWidth(220);
+  summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  auto* summaryDock = new QDockWidget(tr("Map"), this);
+  summaryDock->setObjectName(QStringLiteral("mapDock"));
+  summaryDock->setWidget(summary_);
+  addDockWidget(Qt::RightDockWidgetArea, summaryDock);
+  updateSummary();
+}
+
+void MainWindow::createMenus() {
+  QMenu* file = menuBar()->addMenu(tr("&File"));
+  file->addAction(openAction_);
+  recentMenu_ = file->addMenu(tr("Open &Recent"));
+  QAction* example = file->addAction(tr("Open &Example…"));
+  connect(example, &QAction::triggered, this, &MainWindow::openExample);
+  file->addAction(openReferenceAction_);
+  file->addSeparator();
+  file->addAction(exportViewPngAction_);
+  file->addAction(exportViewSvgAction_);
+  file->addAction(exportMapPngAction_);
+  file->addAction(exportRosAction_);
+  file->addSeparator();
+  QAction* quit = file->addAction(tr("&Quit"));
+  quit->setShortcut(QKeySequence::Quit);
+  connect(quit, &QAction::triggered, this, &QWidget::close);
+  recent_ = QSettings().value("files/recent").toStringList();
+  rebuildRecentMenu();
+
+  QMenu* view = menuBar()->addMenu(tr("&View"));
+  view->addAction(fitAction_);
+  view->addSeparator();
+  for (QAction* a : overlayActions_) view->addAction(a);
+  view->addSeparator();
+  for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
+
+  QMenu* time = menuBar()->addMenu(tr("&Timeline"));
+  time->addAction(playAction_);
+  time->addAction(stepForwardAction_);
+  time->addAction(stepBackAction_);
+
+  QMenu* mapping = menuBar()->addMenu(tr("&Mapping"));
+  modelMenu_ = mapping->addMenu(tr("Sensor &Model"));
+  ruleMenu_ = mapping->addMenu(tr("Update &Rule"));
+  QMenu* pose = mapping->addMenu(tr("&Pose"));
+  poseGroup_ = new QActionGroup(this);
+  for (PoseSource p : {PoseSource::Odometry, PoseSource::Truth}) {
+    QAction* a = pose->addAction(p == PoseSource::Truth ? tr("&True pose") : tr("&Odometry"));
+    a->setCheckable(true);
+    a->setData(poseName(p));
+    poseGroup_->addAction(a);
+    connect(a, &QAction::triggered, this, [this, p] { choosePose(p); });
+  }
+  rebuildMappingMenu();
+
+  QMenu* help = menuBar()->addMenu(tr("&Help"));
+  QAction* guide = help->addAction(tr("&User Guide"));
+  guide->setShortcut(QKeySequence::HelpContents);
+  connect(guide, &QAction::triggered, this, &MainWindow::showUserGuide);
+  QAction* keys = help->addAction(tr("&Keyboard Shortcuts"));
+  keys->setShortcut(QKeySequence(tr("Ctrl+/")));
+  connect(keys, &QAction::triggered, this, &MainWindow::showShortcuts);
+  connect(help->addAction(tr("&About SonarGrid")), &QAction::triggered, this,
+          &MainWindow::showAbout);
+  // Shortcuts of hidden docks' actions still work when they live on the window.
+  addActions({playAction_, stepForwardAction_, stepBackAction_});
+}
+
+void MainWindow::rebuildMappingMenu() {
+  modelMenu_->clear();
+  ruleMenu_->clear();
+  auto* models = new QActionGroup(modelMenu_);
+  for (const std::string& name : sensorModelNames()) {
+    QAction* a = modelMenu_->addAction(QString::fromStdString(sensorModelInfo(name).title));
+    a->setCheckable(true);
+    a->setChecked(name == settings_.model);
+    models->addAction(a);
+    connect(a, &QAction::triggered, this,
+            [this, n = QString::fromStdString(name)] { chooseModel(n); });
+  }
+  auto* rules = new QActionGroup(ruleMenu_);
+  for (const std::string& name : updateRuleNames()) {
+    QAction* a = ruleMenu_->addAction(QString::fromStdString(updateRuleInfo(name).title));
+    a->setCheckable(true);
+    a->setChecked(name == settings_.rule);
+    const Compatibility c = compatibility(settings_.model, name);
+    a->setEnabled(c.allowed);
+    if (!c.allowed) a->setToolTip(QString::fromStdString(c.reason));
+    rules->addAction(a);
+    connect(a, &QAction::triggered, this,
+            [this, n = QString::fromStdString(name)] { chooseRule(n); });
+  }
+  ruleMenu_->setToolTipsVisible(true);
+  for (QAction* a : poseGroup_->actions()) a->setChecked(a->data() == poseName(settings_.pose));
+}
+
+void MainWindow::chooseModel(const QString& model) {
+  MapperSettings s = settings_;
+  s.model = model.toStdString();
+  if (!compatibility(s.model, s.rule).allowed) {
+    for (const std::string& rule : updateRuleNames())
+      if (compatibility(s.model, rule).allowed) {
+        s.rule = rule;
+        break;
+      }
+  }
+  s.parameters = carryParameters(s.model, s.rule, settings_.parameters);
+  setMapperSettings(s);
+}
+
+void MainWindow::chooseRule(const QString& rule) {
+  MapperSettings s = settings_;
+  s.rule = rule.toStdString();
+  s.parameters = carryParameters(s.model, s.rule, settings_.parameters);
+  setMapperSettings(s);
+}
+
+void MainWindow::choosePose(PoseSource pose) {
+  MapperSettings s = settings_;
+  s.pose = pose;
+  setMapperSettings(s);
+}
+
+void MainWindow::setMapperSettings(const MapperSettings& settings) {
+  settings_ = settings;
+  showSettings();
+  remap_->setSettings(settings);
+}
+
+void MainWindow::showSettings() {
+  const MapperSettings& settings = settings_;
+  QSettings s;
+  s.setValue("mapping/model", QString::fromStdString(settings.model));
+  s.setValue("mapping/rule", QString::fromStdString(settings.rule));
+  s.setValue("mapping/pose", poseName(settings.pose));
+  s.remove("mapping/parameters");
+  s.beginGroup("mapping/parameters");
+  for (const auto& [name, value] : settings.parameters.values())
+    s.setValue(QString::fromStdString(name), value);
+  s.endGroup();
+  if (modelMenu_) rebuildMappingMenu();
+  view_->setNativeName(QString::fromStdString(updateRuleInfo(settings.rule).nativeName));
+  if (data_) view_->setRobotAt(data_.get(), settings_.pose, timeline_->currentScan());
+  updateSummary();
+  updateTitle();
+}
+
+void MainWindow::setCellSize(double metres) {
+  cellSize_ = metres;
+  QSettings().setValue("mapping/cell", metres);
+  if (data_) remap_->setDataset(data_, cellSize_);
+}
+
+bool MainWindow::reportError(const QString& title, const QString& message, bool quiet) {
+  if (quiet || QApplication::platformName() == QLatin1String("offscreen"))
+    std::cerr << "sonargrid: " << message.toStdString() << '\n';
+  else
+    QMessageBox::critical(this, title, message);
+  return false;
+}
+
+bool MainWindow::openLog(const QString& path, bool quiet) {
+  std::shared_ptr<const Dataset> loaded;
+  try {
+    loaded =
+        std::make_shared<const Dataset>(readSglog(QDir::toNativeSeparators(path).toStdString()));
+  } catch (const std::exception& e) {
+    return reportError(tr("Cannot open log"), QString::fromStdString(e.what()), quiet);
+  }
+  if (loaded->scans.empty())
+    return reportError(tr("Cannot open log"), path + tr(": the log holds no scans"), quiet);
+  data_ = std::move(loaded);
+  logPath_ = path;
+  rememberRecent(path);
+  QSettings().setValue("files/lastDirectory", QFileInfo(path).absolutePath());
+
+  // A reference map beside the log (room.sglog + room.json) is taken along unless one is loaded.
+  const QString sibling = QFileInfo(path).path() + QDir::separator() +
+                          QFileInfo(path).completeBaseName() + QStringLiteral(".json");
+  if (!reference_ && QFileInfo::exists(sibling)) openReference(sibling, true);
+
+  if (settings_.pose == PoseSource::Truth && !data_->hasTruth())
+    settings_.pose = PoseSource::Odometry;
+  std::vector<double> times;
+  double end = 0.0;
+  times.reserve(data_->scans.size());
+  for (const Scan& scan : data_->scans) {
+    times.push_back(scan.time);
+    end = std::max(end, scan.time);
+    for (const Reading& r : scan.readings) end = std::max(end, r.time);
+  }
+  {
+    const QSignalBlocker block(timeline_);
+    timeline_->setScanTimes(std::move(times), end);
+  }
+  hoverLabel_->setText(tr("Hover over the grid to read a cell; drag to pan, wheel to zoom."));
+  showSettings();
+  remap_->start(data_, cellSize_, settings_, timeline_->time());
+  return true;
+}
+
+bool MainWindow::openReference(const QString& path, bool quiet) {
+  try {
+    reference_ = readReference(QDir::toNativeSeparators(path).toStdString());
+  } catch (const std::exception& e) {
+    return reportError(tr("Cannot open reference map"), QString::fromStdString(e.what()), quiet);
+  }
+  referencePath_ = path;
+  view_->setReferenceLines(ui::referencePolylines(*reference_));
+  updateSummary();
+  return true;
+}
+
+bool MainWindow::waitForMap(int timeoutMs) {
+  QElapsedTimer clock;
+  clock.start();
+  bool done = false, failed = false;
+  const auto a =
+      connect(remap_, &ui::RemapController::mapped, this,
+              [&](auto, double, quint64 g, bool) { done = g == remap_->latestGeneration(); });
+  const auto b = connect(remap_, &ui::RemapController::failed, this,
+                         [&](const QString&, quint64) { failed = true; });
+  while (!done && !failed && clock.elapsed() < timeoutMs && (remap_->busy() || !view_->map())) {
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
+  }
+  disconnect(a);
+  disconnect(b);
+  return !failed && view_->map() && !remap_->busy();
+}
+
+void MainWindow::onMapped(double elapsedMs) {
+  lastRemapMs_ = elapsedMs;
+  remapLabel_->setText(tr("re-mapped in %1 ms").arg(elapsedMs, 0, 'f', 1));
+  updateSummary();
+}
+
+void MainWindow::onTimeChanged(double t, std::size_t scan) {
+  if (!data_) return;
+  view_->setRobotAt(data_.get(), settings_.pose, scan);
+  remap_->setUntil(t);
+}
+
+void MainWindow::updateSummary() {
+  if (!summary_) return;
+  QString html;
+  if (!data_) {
+    html =
+        tr("<p>No log loaded.</p><p>File ▸ Open Log (Ctrl+O), File ▸ Open Example, or drop a "
+           "<code>.sglog</code> file on the window.</p>");
+  } else {
+    const auto map = view_->map();
+    html = QStringLiteral("<b>%1</b><br>%2 scans, %3 readings<br>%4 sonars (%5)")
+               .arg(QFileInfo(logPath_).fileName().toHtmlEscaped())
+               .arg(data_->scans.size())
+               .arg(data_->readingCount())
+               .arg(data_->ring.size())
+               .arg(QString::fromStdString(data_->ring.robot).toHtmlEscaped());
+    html += QStringLiteral("<hr><b>%1</b><br>× <b>%2</b><br>pose: %3")
+                .arg(QString::fromStdString(sensorModelInfo(settings_.model).title).toHtmlEscaped())
+                .arg(QString::fromStdString(updateRuleInfo(settings_.rule).title).toHtmlEscaped())
+                .arg(settings_.pose == PoseSource::Truth ? tr("true pose") : tr("odometry"));
+    if (map) {
+      html += QStringLiteral("<hr>grid %1 × %2 cells of %3 m<br>%4 cells filled<br>re-map %5 ms")
+                  .arg(map->spec.width)
+                  .arg(map->spec.height)
+                  .arg(map->spec.cellSize)
+                  .arg(map->filledCount())
+                  .arg(lastRemapMs_, 0, 'f', 1);
+    }
+    if (reference_)
+      html += QStringLiteral("<hr>reference: %1 (%2 objects)")
+                  .arg(QFileInfo(referencePath_).fileName().toHtmlEscaped())
+                  .arg(reference_->objects.size());
+  }
+  summary_->setText(html);
+}
+
+void MainWindow::updateTitle() {
+  setWindowTitle(data_ ? QStringLiteral("%1 — %2 × %3 — SonarGrid")
+                             .arg(QFileInfo(logPath_).fileName(),
+                                  QString::fromStdString(settings_.model),
+                                  QString::fromStdString(settings_.rule))
+                       : QStringLiteral("SonarGrid"));
+}
+
+void MainWindow::rememberRecent(const QString& path) {
+  const QString absolute = QFileInfo(path).absoluteFilePath();
+  recent_.removeAll(absolute);
+  recent_.prepend(absolute);
+  while (recent_.size() > kMaxRecent) recent_.removeLast();
+  QSettings().setValue("files/recent", recent_);
+  rebuildRecentMenu();
+}
+
+void MainWindow::rebuildRecentMenu() {
+  if (!recentMenu_) return;
+  recentMenu_->clear();
+  for (int i = 0; i < recent_.size(); ++i) {
+    const QString path = recent_[i];
+    QAction* a = recentMenu_->addAction(QStringLiteral("&%1 %2").arg(i + 1).arg(path));
+    connect(a, &QAction::triggered, this, [this, path] { openLog(path); });
+  }
+  recentMenu_->setEnabled(!recent_.isEmpty());
+}
+
+void MainWindow::restoreWindowState() {
+  QSettings s;
+  if (!restoreGeometry(s.value("window/geometry").toByteArray())) resize(1280, 800);
+  restoreState(s.value("window/state").toByteArray());
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  QSettings s;
+  s.setValue("window/geometry", saveGeometry());
+  s.setValue("window/state", saveState());
+  QMainWindow::closeEvent(event);
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+  for (const QUrl& url : event->mimeData()->urls())
+    if (url.isLocalFile()) {
+      event->acceptProposedAction();
+      return;
+    }
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+  for (const QUrl& url : event->mimeData()->urls()) {
+    if (!url.isLocalFile()) continue;
+    const QString path = url.toLocalFile();
+    if (isReferenceFile(path))
+      openReference(path);
+    else
+      openLog(path);
+  }
+  event->acceptProposedAction();
+}
+
+void MainWindow::openLogDialog() {
+  const QString dir = QSettings().value("files/lastDirectory", QDir::homePath()).toString();
+  const QString path = QFileDialog::getOpenFileName(this, tr("Open Log"), dir,
+                                                    tr("SonarGrid logs (*.sglog);;All files (*)"));
+  if (!path.isEmpty()) openLog(path);
+}
+
+void MainWindow::openReferenceDialog() {
+  const QString dir = QSettings().value("files/lastDirectory", QDir::homePath()).toString();
+  const QString path =
+      QFileDialog::getOpenFileName(this, tr("Open Reference Map"), dir,
+                                   tr("Reference maps (*.json *.map *.yaml *.yml);;All files (*)"));
+  if (!path.isEmpty()) openReference(path);
+}
+
+void MainWindow::openExample() {
+  const QString dir = bundledDatasetsDirectory();
+  if (dir.isEmpty()) {
+    reportError(tr("No examples"), tr("The bundled datasets were not found."), false);
+    return;
+  }
+  const QString path =
+      QFileDialog::getOpenFileName(this, tr("Open Example"), dir, tr("SonarGrid logs (*.sglog)"));
+  if (!path.isEmpty()) openLog(path);
+}
+
+QString MainWindow::saveFileName(const QString& title, const QString& filter,
+                                 const QString& suffix) {
+  QSettings s;
+  const QString base = data_ ? QFileInfo(logPath_).completeBaseName() + QStringLiteral("-") +
+                                   QString::fromStdString(settings_.model)
+                             : QStringLiteral("sonargrid");
+  const QString dir = s.value("files/exportDirectory", QDir::homePath()).toString();
+  QString path =
+      QFileDialog::getSaveFileName(this, title, dir + QDir::separator() + base + suffix, filter);
+  if (path.isEmpty()) return path;
+  if (!path.endsWith(suffix, Qt::CaseInsensitive)) path += suffix;
+  s.setValue("files/exportDirectory", QFileInfo(path).absolutePath());
+  return path;
+}
+
+void MainWindow::exportViewPng() {
+  const QString path = saveFileName(tr("Export View as PNG"), tr("PNG images (*.png)"), ".png");
+  if (path.isEmpty()) return;
+  if (!view_->renderImage().save(path, "PNG"))
+    reportError(tr("Export failed"), path + tr(": cannot be written"), false);
+}
+
+void MainWindow::exportViewSvg() {
+  const QString path = saveFileName(tr("Export View as SVG"), tr("SVG drawings (*.svg)"), ".svg");
+  if (path.isEmpty()) return;
+  QSvgGenerator svg;
+  svg.setFileName(path);
+  svg.setSize(view_->size());
+  svg.setViewBox(QRect(QPoint(0, 0), view_->size()));
+  svg.setTitle(windowTitle());
+  svg.setDescription(tr("Occupancy grid exported by SonarGrid"));
+  QPainter painter;
+  if (!painter.begin(&svg)) {
+    reportError(tr("Export failed"), path + tr(": cannot be written"), false);
+    return;
+  }
+  view_->paintVector(painter);
+  painter.end();
+}
+
+void MainWindow::exportMapPng() {
+  if (!view_->map()) return;
+  const QString path = saveFileName(tr("Export Map as PNG"), tr("PNG images (*.png)"), ".png");
+  if (path.isEmpty()) return;
+  try {
+    PngOptions o;
+    o.legend = true;
+    o.scale = std::max(1, static_cast<int>(std::lround(0.2 / view_->map()->spec.cellSize)));
+    writeMapPng(*view_->map(), QDir::toNativeSeparators(path).toStdString(), o);
+  } catch (const std::exception& e) {
+    reportError(tr("Export failed"), QString::fromStdString(e.what()), false);
+  }
+}
+
+void MainWindow::exportRosMap() {
+  if (!view_->map()) return;
+  QString path =
+      saveFileName(tr("Export Map for ROS map_server"), tr("map_server YAML (*.yaml)"), ".yaml");
+  if (path.isEmpty()) return;
+  path.chop(5);  // writeRosMap adds .yaml and .pgm
+  try {
+    writeRosMap(*view_->map(), QDir::toNativeSeparators(path).toStdString());
+  } catch (const std::exception& e) {
+    reportError(tr("Export failed"), QString::fromStdString(e.what()), false);
+  }
+}
+
+void MainWindow::showUserGuide() {
+  QFile file(QStringLiteral(":/sonargrid/user-guide.md"));
+  file.open(QIODevice::ReadOnly);
+  auto* dialog = new QDialog(this);
+  dialog->setAttribute(Qt::WA_DeleteOnClose);
+  dialog->setWindowTitle(tr("SonarGrid User Guide"));
+  auto* text = new QTextBrowser(dialog);
+  text->setOpenExternalLinks(true);
+  text->setMarkdown(QString::fromUtf8(file.readAll()));
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Close, dialog);
+  connect(buttons, &QDialogButtonBox::rejected, dialog, &QDialog::close);
+  auto* layout = new QVBoxLayout(dialog);
+  layout->addWidget(text);
+  layout->addWidget(buttons);
+  dialog->resize(720, 640);
+  dialog->show();
+}
+
+void MainWindow::showShortcuts() {
+  // Every menu action with a shortcut, read from the menus so that the list cannot go stale, then
+  // the keys and gestures the grid view handles itself.
+  QList<QPair<QString, QString>> rows;
+  for (QAction* menu : menuBar()->actions()) {
+    if (!menu->menu()) continue;
+    for (QAction* a : menu->menu()->actions())
+      if (!a->shortcut().isEmpty())
+        rows.append({a->text().remove('&'), a->shortcut().toString(QKeySequence::NativeText)});
+  }
+  rows.append({tr("Zoom in / out"), tr("+ / −, mouse wheel, pinch")});
+  rows.append({tr("Pan"), tr("arrow keys, drag with the left or middle button")});
+  rows.append({tr("Fit to map"), tr("F, Home, double-click")});
+  auto* dialog = new QDialog(this);
+  dialog->setAttribute(Qt::WA_DeleteOnClose);
+  dialog->setWindowTitle(tr("Keyboard Shortcuts"));
+  auto* table = new QTableWidget(static_cast<int>(rows.size()), 2, dialog);
+  table->setHorizontalHeaderLabels({tr("Action"), tr("Keys")});
+  table->verticalHeader()->hide();
+  table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  for (int i = 0; i < rows.size(); ++i) {
+    table->setItem(i, 0, new QTableWidgetItem(rows[i].first));
+    table->setItem(i, 1, new QTableWidgetItem(rows[i].second));
+  }
+  table->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Close, dialog);
+  connect(buttons, &QDialogButtonBox::rejected, dialog, &QDialog::close);
+  auto* layout = new QVBoxLayout(dialog);
+  layout->addWidget(table);
+  layout->addWidget(buttons);
+  dialog->resize(520, 560);
+  dialog->show();
+}
+
+void MainWindow::showAbout() {
+  QMessageBox::about(
+      this, tr("About SonarGrid"),
+      tr("<b>SonarGrid %1</b><p>A workbench for sonar occupancy-grid mapping: five inverse sensor "
+         "models, seven update rules, 16 certainty levels.</p>")
+          .arg(QApplication::applicationVersion()));
+}
+
+}  // namespace sg::app

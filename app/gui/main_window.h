@@ -1,0 +1,130 @@
+#pragma once
+// The desktop app's window: the grid view in the centre, docks around it, the File / View /
+// Mapping / Help menus, and the wiring between the document (log, reference, mapper settings), the
+// RemapController and the views. The window never parses a file or evaluates a model: the core
+// does (DESIGN.md, "Data flow").
+
+#include <QMainWindow>
+#include <QStringList>
+#include <memory>
+#include <optional>
+
+#include "grid_view.h"
+#include "sonargrid/dataset.h"
+#include "sonargrid/mapper.h"
+#include "sonargrid/reference/reference_map.h"
+
+class QAction;
+class QActionGroup;
+class QLabel;
+class QMenu;
+
+namespace sg::ui {
+class RemapController;
+class Timeline;
+}  // namespace sg::ui
+
+namespace sg::app {
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+
+ public:
+  explicit MainWindow(ui::GridView::Backend backend = ui::GridView::Backend::Automatic,
+                      QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  // Each returns false after telling the user (a message box naming file:line) what was wrong; the
+  // previous document then stays loaded. `quiet` reports on stderr instead (screenshots, tests).
+  bool openLog(const QString& path, bool quiet = false);
+  bool openReference(const QString& path, bool quiet = false);
+
+  // Model, rule, parameters and pose: re-maps the log.
+  void setMapperSettings(const sg::MapperSettings& settings);
+  const sg::MapperSettings& mapperSettings() const { return settings_; }
+  void setCellSize(double metres);
+
+  ui::GridView* gridView() const { return view_; }
+  ui::Timeline* timeline() const { return timeline_; }
+  ui::RemapController* remapController() const { return remap_; }
+  const QStringList& recentFiles() const { return recent_; }
+
+  // Blocks (running the event loop) until the newest requested map has arrived; false on timeout
+  // or failure. For --screenshot and tests.
+  bool waitForMap(int timeoutMs);
+
+  // What the user last chose (model, rule, pose, cell size), as QSettings remembers it.
+  static sg::MapperSettings lastSettings();
+  static double lastCellSize();
+
+ protected:
+  void closeEvent(QCloseEvent* event) override;
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
+
+ private:
+  void createActions();
+  void createMenus();
+  // Every dock of the window is made here (the parameter panel joins them).
+  void createDocks();
+  void restoreWindowState();
+  void rememberRecent(const QString& path);
+  void rebuildRecentMenu();
+  void rebuildMappingMenu();
+  void chooseModel(const QString& model);
+  void chooseRule(const QString& rule);
+  void choosePose(sg::PoseSource pose);
+  // Shows settings_ in the menus, title and summary, and remembers it.
+  void showSettings();
+  void updateSummary();
+  void updateTitle();
+  void onMapped(double elapsedMs);
+  void onTimeChanged(double t, std::size_t scan);
+  bool reportError(const QString& title, const QString& message, bool quiet);
+
+  void openLogDialog();
+  void openReferenceDialog();
+  void openExample();
+  void exportViewPng();
+  void exportViewSvg();
+  void exportMapPng();
+  void exportRosMap();
+  void showUserGuide();
+  void showShortcuts();
+  void showAbout();
+  QString saveFileName(const QString& title, const QString& filter, const QString& suffix);
+
+  ui::GridView* view_;
+  ui::Timeline* timeline_ = nullptr;
+  ui::RemapController* remap_;
+  QLabel* hoverLabel_;
+  QLabel* remapLabel_;
+  QLabel* summary_ = nullptr;
+
+  std::shared_ptr<const sg::Dataset> data_;
+  QString logPath_;
+  std::optional<sg::ReferenceMap> reference_;
+  QString referencePath_;
+  sg::MapperSettings settings_;
+  double cellSize_ = 0.05;
+  double lastRemapMs_ = 0.0;
+  QStringList recent_;
+
+  QMenu* recentMenu_ = nullptr;
+  QMenu* modelMenu_ = nullptr;
+  QMenu* ruleMenu_ = nullptr;
+  QActionGroup* poseGroup_ = nullptr;
+  QAction* openAction_ = nullptr;
+  QAction* openReferenceAction_ = nullptr;
+  QAction* exportViewPngAction_ = nullptr;
+  QAction* exportViewSvgAction_ = nullptr;
+  QAction* exportMapPngAction_ = nullptr;
+  QAction* exportRosAction_ = nullptr;
+  QAction* playAction_ = nullptr;
+  QAction* stepForwardAction_ = nullptr;
+  QAction* stepBackAction_ = nullptr;
+  QAction* fitAction_ = nullptr;
+  QList<QAction*> overlayActions_;
+};
+
+}  // namespace sg::app

@@ -1,0 +1,297 @@
+#include "grid_image.h"
+
+#include <QPainter>
+#include <QPainterPath>
+#include <algorithm>
+#include <cmath>
+
+namespace sg::ui {
+
+QPointF ViewTransform::toPixel(const Position& world, const QSize& size) const {
+  return {size.width() / 2.0 + (world.x() - centre.x()) * pixelsPerMetre,
+          size.height() / 2.0 - (world.y() - centre.y()) * pixelsPerMetre};
+}
+
+Position ViewTransform::toWorld(const QPointF& pixel, const QSize& size) const {
+  return {centre.x() + (pixel.x() - size.width() / 2.0) / pixelsPerMetre,
+          centre.y() - (pixel.y() - size.height() / 2.0) / pixelsPerMetre};
+}
+
+ViewTransform ViewTransform::fitting(const GridSpec& grid, const QSize& size, int marginPx) {
+  ViewTransform t;
+  t.centre = grid.origin + Position(grid.widthMetres(), grid.heightMetres()) / 2.0;
+  const double w = std::max(1, size.width() - 2 * marginPx);
+  const double h = std::max(1, size.height() - 2 * marginPx);
+  if (grid.width > 0 && grid.height > 0)
+    t.pixelsPerMetre = std::min(w / grid.widthMetres(), h / grid.heightMetres());
+  return t;
+}
+
+std::vector<std::vector<Position>> referencePolylines(const ReferenceMap& reference) {
+  std::vector<std::vector<Position>> lines;
+  for (const ReferenceObject& object : reference.objects) {
+    std::vector<Position> line;
+    for (std::size_t i = 0; i < object.corners.size(); ++i)
+      line.push_back(reference.cornerMetres(object, i));
+    if (object.closed && !line.empty()) line.push_back(line.front());
+    lines.push_back(std::move(line));
+  }
+  return lines;
+}
+
+void placeRobot(GridScene& scene, const Dataset& data, PoseSource source, std::size_t scan) {
+  scene.path.clear();
+  scene.sonars.clear();
+  scene.beams.clear();
+  scene.robot.reset();
+  if (scan >= data.scans.size()) return;
+  scene.path.reserve(scan + 1);
+  for (std::size_t i = 0; i <= scan; ++i)
+    scene.path.push_back(data.pose(data.scans[i], source).position);
+  const Pose2D robot = data.pose(data.scans[scan], source);
+  scene.robot = robot;
+  for (const SonarMount& mount : data.ring.sonars)
+    scene.sonars.push_back(robot.compose(mount.pose));
+  for (const Reading& r : data.scans[scan].readings) {
+    if (r.sonar >= scene.sonars.size()) continue;
+    BeamCone cone;
+    cone.sonar = scene.sonars[r.sonar];
+    cone.halfAngle = data.ring.apertureRad / 2.0;
+    cone.echo = r.echo();
+    cone.range = cone.echo ? r.range : data.ring.maxRange;
+    scene.beams.push_back(cone);
+  }
+}
+
+QColor backgroundColour() {
+  return QColor(58, 62, 66);
+}
+
+QImage renderGridCells(const OccupancyMap* map, const LevelPalette& palette,
+                       const ViewTransform& view, const QSize& size) {
+  QImage image(size, QImage::Format_RGB32);
+  const QRgb background = backgroundColour().rgb();
+  image.fill(background);
+  if (!map || map->spec.width <= 0 || map->spec.height <= 0 || size.isEmpty()) return image;
+  if (map->level.size() != map->spec.cellCount()) return image;
+  const GridSpec& g = map->spec;
+  QRgb colours[kLevels];
+  for (int k = 0; k < kLevels; ++k) {
+    const Rgb& c = palette[static_cast<std::size_t>(k)];
+    colours[k] = qRgb(c.r, c.g, c.b);
+  }
+  // The cell column of every pixel column, computed once (-1 outside the grid).
+  std::vector<int> columnCell(static_cast<std::size_t>(size.width()));
+  for (int px = 0; px < size.width(); ++px) {
+    const double x = view.toWorld(QPointF(px + 0.5, 0.0), size).x();
+    const int ix = static_cast<int>(std::floor((x - g.origin.x()) / g.cellSize));
+    columnCell[static_cast<std::size_t>(px)] = ix >= 0 && ix < g.width ? ix : -1;
+  }
+  for (int py = 0; py < size.height(); ++py) {
+    const double y = view.toWorld(QPointF(0.0, py + 0.5), size).y();
+    const int iy = static_cast<int>(std::floor((y - g.origin.y()) / g.cellSize));
+    if (iy < 0 || iy >= g.height) continue;
+    auto* line = reinterpret_cast<QRgb*>(image.scanLine(py));
+    const std::uint8_t* row = map->level.data() + static_cast<std::size_t>(iy) * g.width;
+    for (int px = 0; px < size.width(); ++px) {
+      const int ix = columnCell[static_cast<std::size_t>(px)];
+      if (ix >= 0) line[px] = colours[std::min<int>(row[ix], kLevels - 1)];
+    }
+  }
+  return image;
+}
+
+namespace {
+
+constexpr int kLegendMargin = 10;
+constexpr int kLegendPadding = 6;
+constexpr int kSwatch = 16;
+constexpr int kLegendLabel = 14;
+
+QRect legendBox(const QSize& size) {
+  const int w = 2 * kLegendPadding + kLevels * kSwatch;
+  const int h = 2 * kLegendPadding + kSwatch + kLegendLabel;
+  return {kLegendMargin, size.height() - kLegendMargin - h, w, h};
+}
+
+bool legendFits(const QSize& size) {
+  const QRect box = legendBox(size);
+  return box.top() >= kLegendMargin && box.right() + kLegendMargin < size.width();
+}
+
+void paintLegend(QPainter& p, const LevelPalette& palette, const QSize& size) {
+  if (!legendFits(size)) return;
+  const QRect box = legendBox(size);
+  p.setPen(QPen(QColor(40, 40, 40), 1.0));
+  p.setBrush(QColor(255, 255, 255, 230));
+  p.drawRect(QRectF(box).adjusted(0.5, 0.5, -0.5, -0.5));
+  p.setPen(Qt::NoPen);
+  for (int k = 0; k < kLevels; ++k) {
+    const Rgb& c = palette[static_cast<std::size_t>(k)];
+    p.fillRect(legendSwatch(k, size), QColor(c.r, c.g, c.b));
+  }
+  QFont font = p.font();
+  font.setPixelSize(10);
+  p.setFont(font);
+  p.setPen(QColor(30, 30, 30));
+  const int labelTop = box.top() + kLegendPadding + kSwatch;
+  for (int k : {0, 8, 15}) {
+    const QRect s = legendSwatch(k, size);
+    p.drawText(QRect(s.left() - 8, labelTop, s.width() + 16, kLegendLabel), Qt::AlignCenter,
+               QString::number(k));
+  }
+  p.drawText(QRect(legendSwatch(2, size).left(), labelTop, 5 * kSwatch, kLegendLabel),
+             Qt::AlignCenter, QStringLiteral("free"));
+  p.drawText(QRect(legendSwatch(10, size).left(), labelTop, 4 * kSwatch, kLegendLabel),
+             Qt::AlignCenter, QStringLiteral("occupied"));
+}
+
+QPolygonF polyline(const std::vector<Position>& points, const ViewTransform& view,
+                   const QSize& size) {
+  QPolygonF out;
+  out.reserve(static_cast<qsizetype>(points.size()));
+  for (const Position& p : points) out << view.toPixel(p, size);
+  return out;
+}
+
+QPainterPath conePath(const BeamCone& cone, const ViewTransform& view, const QSize& size) {
+  constexpr int kArcSteps = 12;
+  QPainterPath path(view.toPixel(cone.sonar.position, size));
+  for (int i = 0; i <= kArcSteps; ++i) {
+    const double a = cone.sonar.heading - cone.halfAngle + 2.0 * cone.halfAngle * i / kArcSteps;
+    const Position tip = cone.sonar.position + cone.range * Position(std::cos(a), std::sin(a));
+    path.lineTo(view.toPixel(tip, size));
+  }
+  path.closeSubpath();
+  return path;
+}
+
+}  // namespace
+
+QRect legendSwatch(int level, const QSize& size) {
+  const QRect box = legendBox(size);
+  return {box.left() + kLegendPadding + level * kSwatch, box.top() + kLegendPadding, kSwatch,
+          kSwatch};
+}
+
+void paintOverlays(QPainter& p, const GridScene& scene, const LevelPalette& palette,
+                   Overlays overlays, const ViewTransform& view, const QSize& size) {
+  p.save();
+  p.setRenderHint(QPainter::Antialiasing, true);
+  p.setBrush(Qt::NoBrush);
+  if (overlays.testFlag(Overlay::Reference)) {
+    p.setPen(QPen(QColor(0, 190, 90), 2.0, Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
+    for (const auto& line : scene.referenceLines) p.drawPolyline(polyline(line, view, size));
+  }
+  if (overlays.testFlag(Overlay::Path) && scene.path.size() > 1) {
+    p.setPen(QPen(QColor(255, 160, 0), 1.5, Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
+    p.drawPolyline(polyline(scene.path, view, size));
+  }
+  if (overlays.testFlag(Overlay::Beams)) {
+    for (const BeamCone& cone : scene.beams) {
+      if (cone.echo) {
+        p.setPen(QPen(QColor(255, 214, 0, 200), 1.0));
+        p.setBrush(QColor(255, 230, 0, 60));
+      } else {
+        p.setPen(QPen(QColor(0, 200, 255, 150), 1.0, Qt::DashLine));
+        p.setBrush(QColor(0, 200, 255, 25));
+      }
+      p.drawPath(conePath(cone, view, size));
+    }
+    p.setBrush(Qt::NoBrush);
+  }
+  if (overlays.testFlag(Overlay::Robot) && scene.robot) {
+    const QPointF c = view.toPixel(scene.robot->position, size);
+    const double r = std::max(4.0, scene.robotRadius * view.pixelsPerMetre);
+    p.setPen(QPen(QColor(20, 20, 20), 1.5));
+    p.setBrush(QColor(255, 255, 255, 150));
+    p.drawEllipse(c, r, r);
+    const Position nose =
+        scene.robot->position + scene.robotRadius * Position(std::cos(scene.robot->heading),
+                                                             std::sin(scene.robot->heading));
+    p.drawLine(c, view.toPixel(nose, size));
+    p.setBrush(Qt::NoBrush);
+  }
+  if (overlays.testFlag(Overlay::Ring)) {
+    p.setPen(QPen(QColor(0, 120, 255), 1.5));
+    p.setBrush(QColor(0, 120, 255));
+    for (const Pose2D& s : scene.sonars) {
+      const QPointF c = view.toPixel(s.position, size);
+      const Position tick = s.position + 0.08 * Position(std::cos(s.heading), std::sin(s.heading));
+      p.drawEllipse(c, 2.5, 2.5);
+      p.drawLine(c, view.toPixel(tick, size));
+    }
+    p.setBrush(Qt::NoBrush);
+  }
+  if (overlays.testFlag(Overlay::Legend)) {
+    p.setRenderHint(QPainter::Antialiasing, false);
+    paintLegend(p, palette, size);
+  }
+  p.restore();
+}
+
+QImage renderGridImage(const GridScene& scene, const LevelPalette& palette, Overlays overlays,
+                       const ViewTransform& view, const QSize& size) {
+  QImage image = renderGridCells(scene.map.get(), palette, view, size);
+  QPainter painter(&image);
+  paintOverlays(painter, scene, palette, overlays, view, size);
+  return image;
+}
+
+void paintGridVector(QPainter& painter, const GridScene& scene, const LevelPalette& palette,
+                     Overlays overlays, const ViewTransform& view, const QSize& size) {
+  painter.fillRect(QRect(QPoint(0, 0), size), backgroundColour());
+  const OccupancyMap* map = scene.map.get();
+  if (map && map->spec.width > 0 && map->spec.height > 0 &&
+      map->level.size() == map->spec.cellCount()) {
+    const GridSpec& g = map->spec;
+    // One pixel per cell, row 0 of the image at the top (world +y is up).
+    QImage cells(g.width, g.height, QImage::Format_RGB32);
+    for (int iy = 0; iy < g.height; ++iy) {
+      auto* line = reinterpret_cast<QRgb*>(cells.scanLine(g.height - 1 - iy));
+      for (int ix = 0; ix < g.width; ++ix) {
+        const Rgb& c = palette[std::min<std::size_t>(map->level[g.linear({ix, iy})], kLevels - 1)];
+        line[ix] = qRgb(c.r, c.g, c.b);
+      }
+    }
+    const QPointF topLeft = view.toPixel(g.origin + Position(0.0, g.heightMetres()), size);
+    const QPointF bottomRight = view.toPixel(g.origin + Position(g.widthMetres(), 0.0), size);
+    painter.save();
+    painter.setClipRect(QRect(QPoint(0, 0), size));
+    painter.setRenderHint(QPainter::SmoothPixmapTransform, false);
+    painter.drawImage(QRectF(topLeft, bottomRight), cells);
+    painter.restore();
+  }
+  paintOverlays(painter, scene, palette, overlays, view, size);
+}
+
+CellReadout readCell(const OccupancyMap& map, const Position& world) {
+  CellReadout r;
+  r.world = world;
+  r.cell = map.spec.worldToCell(world);
+  r.inside = map.spec.contains(r.cell);
+  if (!r.inside) return r;
+  const std::size_t i = map.spec.linear(r.cell);
+  if (i < map.level.size()) r.level = map.level[i];
+  if (i < map.probability.size()) r.probability = map.probability[i];
+  if (i < map.native.size()) r.native = map.native[i];
+  if (i < map.observed.size()) r.observed = map.observed[i] != 0;
+  return r;
+}
+
+QString describeReadout(const CellReadout& r, const QString& nativeName) {
+  QString text =
+      QStringLiteral("x %1 m, y %2 m").arg(r.world.x(), 0, 'f', 3).arg(r.world.y(), 0, 'f', 3);
+  if (!r.inside) return text + QStringLiteral("  (off the grid)");
+  text += QStringLiteral("  |  cell (%1, %2)  |  CV %3  |  p(occ) %4  |  %5 %6")
+              .arg(r.cell.x())
+              .arg(r.cell.y())
+              .arg(r.level)
+              .arg(r.probability, 0, 'f', 3)
+              .arg(nativeName.isEmpty() ? QStringLiteral("native") : nativeName)
+              .arg(r.native, 0, 'g', 4);
+  if (!r.observed) text += QStringLiteral("  (never observed)");
+  return text;
+}
+
+}  // namespace sg::ui

@@ -1,0 +1,296 @@
+#include "grid_view.h"
+
+#include <QGestureEvent>
+#include <QGuiApplication>
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QNativeGestureEvent>
+#include <QPainter>
+#include <QPinchGesture>
+#include <QVBoxLayout>
+#include <QWheelEvent>
+#include <cmath>
+
+#include "grid_gl_surface.h"
+
+namespace sg::ui {
+
+// The surface for platforms without OpenGL: paints renderGridImage(), caching the cells while only
+// the overlays change.
+class GridRasterSurface : public QWidget {
+ public:
+  explicit GridRasterSurface(GridView* view) : QWidget(view), view_(view) {
+    setAttribute(Qt::WA_OpaquePaintEvent);
+  }
+  void invalidateCells() { cellsValid_ = false; }
+
+ protected:
+  void paintEvent(QPaintEvent*) override {
+    const QSize size = view_->size();
+    if (!cellsValid_ || cells_.size() != size || cachedView_ != view_->view_) {
+      cells_ = renderGridCells(view_->scene_.map.get(), view_->palette_, view_->view_, size);
+      cachedView_ = view_->view_;
+      cellsValid_ = true;
+    }
+    QPainter painter(this);
+    painter.drawImage(0, 0, cells_);
+    paintOverlays(painter, view_->scene_, view_->palette_, view_->overlays_, view_->view_, size);
+    painter.end();
+    view_->surfacePainted();
+  }
+
+ private:
+  GridView* view_;
+  QImage cells_;
+  ViewTransform cachedView_;
+  bool cellsValid_ = false;
+};
+
+namespace {
+constexpr double kWheelZoomPerDegree = 1.0025;  // one notch (15 degrees) zooms by about 4 %
+constexpr double kKeyZoom = 1.25;
+constexpr double kKeyPanPixels = 40.0;
+constexpr double kMinPixelsPerMetre = 0.5;
+constexpr double kMaxPixelsPerMetre = 20000.0;
+}  // namespace
+
+GridView::Backend GridView::automaticBackend() {
+  const QString platform = QGuiApplication::platformName();
+  if (platform == QLatin1String("offscreen") || platform == QLatin1String("minimal"))
+    return Backend::Raster;
+  return Backend::OpenGL;
+}
+
+GridView::GridView(Backend backend, QWidget* parent)
+    : QWidget(parent),
+      backend_(backend == Backend::Automatic ? automaticBackend() : backend),
+      palette_(defaultLevelPalette()) {
+  if (backend_ == Backend::OpenGL)
+    surface_ = new GridGlSurface(this);
+  else
+    surface_ = new GridRasterSurface(this);
+  // Events reach the view itself; the surface only draws.
+  surface_->setAttribute(Qt::WA_TransparentForMouseEvents);
+  surface_->setFocusPolicy(Qt::NoFocus);
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  layout->addWidget(surface_);
+  setFocusPolicy(Qt::StrongFocus);
+  setMouseTracking(true);
+  setAcceptDrops(false);
+  grabGesture(Qt::PinchGesture);
+  setMinimumSize(120, 90);
+}
+
+GridView::~GridView() = default;
+
+void GridView::refresh(bool levelsChanged) {
+  if (!levelsChanged && backend_ == Backend::OpenGL)
+    static_cast<GridGlSurface*>(surface_)->overlaysChanged();
+  if (levelsChanged) {
+    if (backend_ == Backend::OpenGL)
+      static_cast<GridGlSurface*>(surface_)->levelsChanged();
+    else
+      static_cast<GridRasterSurface*>(surface_)->invalidateCells();
+  }
+  surface_->update();
+}
+
+void GridView::setMap(std::shared_ptr<const OccupancyMap> map) {
+  const bool sameGrid = scene_.map && map && scene_.map->spec == map->spec;
+  scene_.map = std::move(map);
+  if (!sameGrid && scene_.map) {
+    followFit_ = true;
+    view_ = ViewTransform::fitting(scene_.map->spec, size());
+    refresh(false);  // the overlays move with the view
+    emit viewChanged();
+  }
+  refresh(true);
+}
+
+void GridView::setReferenceLines(std::vector<std::vector<Position>> lines) {
+  scene_.referenceLines = std::move(lines);
+  refresh(false);
+}
+
+void GridView::setRobotAt(const Dataset* dataset, PoseSource pose, std::size_t scan) {
+  if (dataset)
+    placeRobot(scene_, *dataset, pose, scan);
+  else
+    placeRobot(scene_, Dataset{}, pose, 0);
+  refresh(false);
+}
+
+void GridView::setLevelPalette(const LevelPalette& palette) {
+  palette_ = palette;
+  if (backend_ == Backend::OpenGL) static_cast<GridGlSurface*>(surface_)->paletteChanged();
+  refresh(true);
+}
+
+void GridView::setOverlays(Overlays overlays) {
+  overlays_ = overlays;
+  refresh(false);
+}
+
+void GridView::setOverlay(Overlay overlay, bool on) {
+  setOverlays(overlays_.setFlag(overlay, on));
+}
+
+void GridView::setView(const ViewTransform& view) {
+  view_ = view;
+  view_.pixelsPerMetre = std::clamp(view_.pixelsPerMetre, kMinPixelsPerMetre, kMaxPixelsPerMetre);
+  followFit_ = false;
+  refresh(false);
+  emit viewChanged();
+}
+
+void GridView::fitToMap() {
+  if (!scene_.map) return;
+  view_ = ViewTransform::fitting(scene_.map->spec, size());
+  followFit_ = true;
+  refresh(false);
+  emit viewChanged();
+}
+
+void GridView::zoomAt(double factor, const QPointF& pixel) {
+  const Position anchor = view_.toWorld(pixel, size());
+  ViewTransform t = view_;
+  t.pixelsPerMetre =
+      std::clamp(view_.pixelsPerMetre * factor, kMinPixelsPerMetre, kMaxPixelsPerMetre);
+  // Keep `anchor` under `pixel`: solve toPixel(anchor) == pixel for the centre.
+  t.centre = anchor - Position((pixel.x() - width() / 2.0) / t.pixelsPerMetre,
+                               -(pixel.y() - height() / 2.0) / t.pixelsPerMetre);
+  setView(t);
+}
+
+void GridView::panBy(const QPointF& pixels) {
+  ViewTransform t = view_;
+  t.centre -= Position(pixels.x() / t.pixelsPerMetre, -pixels.y() / t.pixelsPerMetre);
+  setView(t);
+}
+
+CellReadout GridView::readoutAt(const QPointF& pixel) const {
+  const Position world = view_.toWorld(pixel, size());
+  if (!scene_.map) {
+    CellReadout r;
+    r.world = world;
+    return r;
+  }
+  return readCell(*scene_.map, world);
+}
+
+QImage GridView::renderImage() const {
+  return renderGridImage(scene_, palette_, overlays_, view_, size());
+}
+
+void GridView::paintVector(QPainter& painter) const {
+  paintGridVector(painter, scene_, palette_, overlays_, view_, size());
+}
+
+QImage GridView::grabSurface() {
+  if (backend_ == Backend::OpenGL) return static_cast<GridGlSurface*>(surface_)->grabFramebuffer();
+  return surface_->grab().toImage();
+}
+
+void GridView::resizeEvent(QResizeEvent* event) {
+  QWidget::resizeEvent(event);
+  if (followFit_ && scene_.map) {
+    view_ = ViewTransform::fitting(scene_.map->spec, size());
+    emit viewChanged();
+  }
+  refresh(false);
+}
+
+void GridView::wheelEvent(QWheelEvent* event) {
+  const double degrees = event->angleDelta().y() / 8.0;
+  if (degrees != 0.0) zoomAt(std::pow(kWheelZoomPerDegree, degrees), event->position());
+  event->accept();
+}
+
+void GridView::mousePressEvent(QMouseEvent* event) {
+  if (event->button() == Qt::LeftButton || event->button() == Qt::MiddleButton) {
+    dragging_ = true;
+    dragFrom_ = event->position();
+    setCursor(Qt::ClosedHandCursor);
+  }
+  event->accept();
+}
+
+void GridView::mouseMoveEvent(QMouseEvent* event) {
+  if (dragging_) {
+    panBy(event->position() - dragFrom_);
+    dragFrom_ = event->position();
+  }
+  const CellReadout r = readoutAt(event->position());
+  emit hovered(r);
+  emit hoverText(describeReadout(r, nativeName_));
+  event->accept();
+}
+
+void GridView::mouseReleaseEvent(QMouseEvent* event) {
+  dragging_ = false;
+  unsetCursor();
+  event->accept();
+}
+
+void GridView::mouseDoubleClickEvent(QMouseEvent* event) {
+  fitToMap();
+  event->accept();
+}
+
+void GridView::keyPressEvent(QKeyEvent* event) {
+  const QPointF centre(width() / 2.0, height() / 2.0);
+  switch (event->key()) {
+    case Qt::Key_Plus:
+    case Qt::Key_Equal:
+      zoomAt(kKeyZoom, centre);
+      break;
+    case Qt::Key_Minus:
+      zoomAt(1.0 / kKeyZoom, centre);
+      break;
+    case Qt::Key_F:
+    case Qt::Key_Home:
+    case Qt::Key_0:
+      fitToMap();
+      break;
+    case Qt::Key_Left:
+      panBy({kKeyPanPixels, 0.0});
+      break;
+    case Qt::Key_Right:
+      panBy({-kKeyPanPixels, 0.0});
+      break;
+    case Qt::Key_Up:
+      panBy({0.0, kKeyPanPixels});
+      break;
+    case Qt::Key_Down:
+      panBy({0.0, -kKeyPanPixels});
+      break;
+    default:
+      QWidget::keyPressEvent(event);
+      return;
+  }
+  event->accept();
+}
+
+bool GridView::event(QEvent* event) {
+  if (event->type() == QEvent::NativeGesture) {
+    // Trackpad pinch (macOS, libinput under Wayland): value is the relative scale change.
+    auto* g = static_cast<QNativeGestureEvent*>(event);
+    if (g->gestureType() == Qt::ZoomNativeGesture) {
+      zoomAt(1.0 + g->value(), g->position());
+      return true;
+    }
+  }
+  if (event->type() == QEvent::Gesture) {
+    auto* g = static_cast<QGestureEvent*>(event);
+    if (auto* pinch = static_cast<QPinchGesture*>(g->gesture(Qt::PinchGesture))) {
+      if (pinch->changeFlags() & QPinchGesture::ScaleFactorChanged)
+        zoomAt(pinch->scaleFactor(), mapFromGlobal(pinch->centerPoint()));
+      g->accept(pinch);
+      return true;
+    }
+  }
+  return QWidget::event(event);
+}
+
+}  // namespace sg::ui

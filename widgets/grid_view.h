@@ -1,0 +1,103 @@
+#pragma once
+// The grid view: pan, zoom (wheel, pinch, keys), fit, a hover read-out and toggled overlays over a
+// map snapshot. It draws through one of two surfaces chosen at construction: an OpenGL surface (the
+// levels as an 8-bit texture recoloured by a 16-entry palette texture, RViz-style) or a raster
+// surface painting renderGridImage(). Under QT_QPA_PLATFORM=offscreen Qt 6.4 gives QOpenGLWidget no
+// context and showing one may crash (DESIGN.md), so Automatic picks the raster surface there.
+
+#include <QImage>
+#include <QPointF>
+#include <QWidget>
+#include <memory>
+
+#include "grid_image.h"
+
+class QPainter;
+
+namespace sg::ui {
+
+class GridView : public QWidget {
+  Q_OBJECT
+
+ public:
+  enum class Backend { Automatic, OpenGL, Raster };
+
+  explicit GridView(Backend backend = Backend::Automatic, QWidget* parent = nullptr);
+  ~GridView() override;
+
+  // What Automatic resolves to on the running platform: Raster under "offscreen" and "minimal".
+  static Backend automaticBackend();
+  Backend backend() const { return backend_; }
+
+  // A new snapshot. The view keeps its pan and zoom while the grid's geometry stays the same, and
+  // fits the new grid otherwise.
+  void setMap(std::shared_ptr<const OccupancyMap> map);
+  std::shared_ptr<const OccupancyMap> map() const { return scene_.map; }
+  void setReferenceLines(std::vector<std::vector<Position>> lines);
+  // The robot, ring, beams and path at scan `scan` of `dataset` (nothing when it is null).
+  void setRobotAt(const Dataset* dataset, PoseSource pose, std::size_t scan);
+  const GridScene& scene() const { return scene_; }
+
+  void setLevelPalette(const LevelPalette& palette);
+  const LevelPalette& levelPalette() const { return palette_; }
+  void setOverlays(Overlays overlays);
+  void setOverlay(Overlay overlay, bool on);
+  Overlays overlays() const { return overlays_; }
+  // Name of the rule's native value for the read-out, e.g. "log-odds".
+  void setNativeName(const QString& name) { nativeName_ = name; }
+
+  const ViewTransform& view() const { return view_; }
+  void setView(const ViewTransform& view);
+  void fitToMap();
+  // Zooms by `factor` keeping the world point under `pixel` where it is.
+  void zoomAt(double factor, const QPointF& pixel);
+  void panBy(const QPointF& pixels);
+
+  // The read-out at a widget pixel (what hovering there shows).
+  CellReadout readoutAt(const QPointF& pixel) const;
+
+  // The picture as the raster path draws it at the view's size (the PNG export).
+  QImage renderImage() const;
+  // The picture drawn as vectors (the SVG export).
+  void paintVector(QPainter& painter) const;
+  // What the surface actually shows (GL: its framebuffer).
+  QImage grabSurface();
+
+  QSize sizeHint() const override { return {800, 600}; }
+
+ signals:
+  void hovered(const sg::ui::CellReadout& readout);
+  void hoverText(const QString& text);
+  void viewChanged();
+  // After every repaint of the surface (what the latency benchmark waits for).
+  void repainted();
+
+ protected:
+  void resizeEvent(QResizeEvent* event) override;
+  void wheelEvent(QWheelEvent* event) override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void mouseReleaseEvent(QMouseEvent* event) override;
+  void mouseDoubleClickEvent(QMouseEvent* event) override;
+  void keyPressEvent(QKeyEvent* event) override;
+  bool event(QEvent* event) override;
+
+ private:
+  friend class GridRasterSurface;
+  friend class GridGlSurface;
+  void refresh(bool levelsChanged);
+  void surfacePainted() { emit repainted(); }
+
+  Backend backend_;
+  QWidget* surface_ = nullptr;
+  GridScene scene_;
+  LevelPalette palette_;
+  Overlays overlays_ = kAllOverlays;
+  ViewTransform view_;
+  bool followFit_ = true;  // refit on resize until the user pans or zooms
+  QString nativeName_;
+  QPointF dragFrom_;
+  bool dragging_ = false;
+};
+
+}  // namespace sg::ui

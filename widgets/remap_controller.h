@@ -1,0 +1,82 @@
+#pragma once
+// Re-maps a dataset off the GUI thread (DESIGN.md, "Threading"). Each request gets a generation
+// number; a newer request raises the cancel flag of the running one, which stops within a few
+// hundred readings (Mapper::mapDataset) and is reported cancelled. Only the newest run's map is
+// delivered, as an immutable snapshot. Runs go one at a time through a private one-thread pool, so
+// a cancelled run never competes with its successor for the cores Mapper already uses.
+//
+// Moving the time forward with unchanged settings continues the last map with the readings in
+// between instead of starting over (the timeline playing). For a log whose readings are in time
+// order that gives the same bits as a batch run to the new time (Mapper: batch and incremental
+// mapping are identical); other logs always start over.
+
+#include <QObject>
+#include <QString>
+#include <QThreadPool>
+#include <atomic>
+#include <limits>
+#include <memory>
+
+#include "sonargrid/dataset.h"
+#include "sonargrid/mapper.h"
+#include "sonargrid/occupancy_map.h"
+
+namespace sg::ui {
+
+class RemapController : public QObject {
+  Q_OBJECT
+
+ public:
+  explicit RemapController(QObject* parent = nullptr);
+  ~RemapController() override;  // cancels the running job and waits for it
+
+  // The log to map (shared, never modified) and the cell size of its fitting grid. Re-maps when
+  // settings were given before.
+  void setDataset(std::shared_ptr<const Dataset> data, double cellSize = 0.05);
+  // Everything at once, one run: a newly opened log.
+  void start(std::shared_ptr<const Dataset> data, double cellSize, const MapperSettings& settings,
+             double until);
+  std::shared_ptr<const Dataset> dataset() const { return data_; }
+  double cellSize() const { return cellSize_; }
+  const MapperSettings& settings() const { return settings_; }
+  double until() const { return until_; }
+  bool busy() const { return running_ > 0; }
+  quint64 latestGeneration() const { return generation_; }
+
+ public slots:
+  // Each of these starts a new run and cancels the stale one. Returns nothing; the outcome arrives
+  // as mapped(), cancelled() or failed().
+  void setSettings(const sg::MapperSettings& settings);
+  void setUntil(double until);  // +infinity: the whole log
+  void remap();
+
+ signals:
+  // The newest run finished: its map, the mapping time in ms, its generation and whether it
+  // continued the previous map rather than starting over.
+  void mapped(std::shared_ptr<const sg::OccupancyMap> map, double elapsedMs, quint64 generation,
+              bool incremental);
+  // A run was superseded; `interrupted` says it stopped before the end of the log.
+  void cancelled(quint64 generation, bool interrupted);
+  void failed(const QString& message, quint64 generation);
+  void busyChanged(bool busy);
+
+ private:
+  struct Job;
+  struct WarmMapper;
+  void finish(quint64 generation, std::shared_ptr<const OccupancyMap> map, double ms,
+              bool interrupted, bool incremental, const QString& error);
+
+  std::shared_ptr<const Dataset> data_;
+  double cellSize_ = 0.05;
+  MapperSettings settings_;
+  bool haveSettings_ = false;
+  double until_ = std::numeric_limits<double>::infinity();
+  quint64 generation_ = 0;
+  std::shared_ptr<std::atomic<bool>> cancelRunning_;
+  int running_ = 0;
+  // Touched only by jobs, and jobs run one at a time.
+  std::shared_ptr<WarmMapper> warm_;
+  QThreadPool pool_;
+};
+
+}  // namespace sg::ui
