@@ -223,14 +223,17 @@ void TstExport::pngOverlayDrawsWorldLines() {
   bare.scale = 4;
   const sg::RgbImage plain = sg::renderMapImage(map, bare);
   const sg::RgbImage drawn = sg::renderMapImage(map, o);
-  QCOMPARE(drawn.at(20, 20), (sg::Rgb{1, 2, 3}));
+  // The line is anti-aliased: its centre row is the overlay colour blended with at most a few
+  // percent of the level-8 background (OpenCV's LINE_AA coverage), so allow 16 levels a channel.
+  const auto nearOverlay = [](sg::Rgb c) { return c.r <= 17 && c.g <= 18 && c.b <= 19; };
+  QVERIFY(nearOverlay(drawn.at(20, 20)));
   QCOMPARE(drawn.at(20, 28), plain.at(20, 28));
   QCOMPARE(drawn.at(20, 28), sg::defaultLevelPalette()[8]);
   o.legend = true;
   o.lines = {{sg::Position(0.5, 0.5), sg::Position(0.5, -5.0)}};  // runs off the map's bottom
   const sg::RgbImage legend = sg::renderMapImage(map, o);
-  QCOMPARE(legend.at(20, 30), (sg::Rgb{1, 2, 3}));
-  QVERIFY(legend.at(20, 41) != (sg::Rgb{1, 2, 3}));
+  QVERIFY(nearOverlay(legend.at(20, 30)));
+  QVERIFY(!nearOverlay(legend.at(20, 41)));
 }
 
 void TstExport::pngLegendWidensNarrowMap() {
