@@ -59,6 +59,7 @@ void placeRobot(GridScene& scene, const Dataset& data, PoseSource source, std::s
     cone.halfAngle = data.ring.apertureRad / 2.0;
     cone.echo = r.echo();
     cone.range = cone.echo ? r.range : data.ring.maxRange;
+    cone.sonarIndex = r.sonar;
     scene.beams.push_back(cone);
   }
 }
@@ -196,6 +197,13 @@ void paintOverlays(QPainter& p, const GridScene& scene, const LevelPalette& pale
         p.setPen(QPen(QColor(0, 200, 255, 150), 1.0, Qt::DashLine));
         p.setBrush(QColor(0, 200, 255, 25));
       }
+      p.drawPath(conePath(cone, view, size));
+    }
+    // The highlighted beam last, on top of its neighbours.
+    for (const BeamCone& cone : scene.beams) {
+      if (cone.sonarIndex != scene.highlightedSonar) continue;
+      p.setPen(QPen(QColor(255, 60, 160), 2.5, cone.echo ? Qt::SolidLine : Qt::DashLine));
+      p.setBrush(QColor(255, 60, 160, 70));
       p.drawPath(conePath(cone, view, size));
     }
     p.setBrush(Qt::NoBrush);

@@ -4,6 +4,7 @@
 #include <QActionGroup>
 #include <QApplication>
 #include <QCloseEvent>
+#include <QComboBox>
 #include <QDialog>
 #include <QDialogButtonBox>
 #include <QDir>
@@ -13,6 +14,7 @@
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
 #include <QMenuBar>
@@ -28,7 +30,9 @@
 #include <cmath>
 #include <iostream>
 
+#include "beam_model_view.h"
 #include "datasets_location.h"
+#include "parameter_panel.h"
 #include "remap_controller.h"
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/io/sglog.h"
@@ -94,9 +98,11 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
 
   connect(view_, &ui::GridView::hoverText, hoverLabel_, &QLabel::setText);
   connect(remap_, &ui::RemapController::mapped, this,
-          [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64, bool) {
+          [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64, bool incremental) {
             view_->setMap(std::move(map));
             onMapped(ms);
+            // The panel shows what a re-map of the log costs, not a continuation while playing.
+            if (!incremental) panel_->showRemapTime(ms);
           });
   connect(remap_, &ui::RemapController::failed, this, [this](const QString& message, quint64) {
     remapLabel_->setText(tr("mapping failed"));
@@ -220,7 +226,54 @@ void MainWindow::createDocks() {
   auto* summaryDock = new QDockWidget(tr("Map"), this);
   summaryDock->setObjectName(QStringLiteral("mapDock"));
   summaryDock->setWidget(summary_);
-  addDockWidget(Qt::RightDockWidgetArea, summaryDock);
+
+  // The parameter panel: its changes come back through setMapperSettings, which shows them
+  // everywhere else (the panel itself ignores settings it already holds).
+  panel_ = new ui::ParameterPanel(this);
+  panel_->setSettings(settings_);
+  connect(panel_, &ui::ParameterPanel::settingsChanged, this, &MainWindow::setMapperSettings);
+  auto* panelDock = new QDockWidget(tr("Parameters"), this);
+  panelDock->setObjectName(QStringLiteral("parametersDock"));
+  panelDock->setWidget(panel_);
+  panelDock->toggleViewAction()->setShortcut(QKeySequence(tr("Ctrl+Shift+P")));
+
+  // The beam-model view of one reading of the current scan, with the panel's model.
+  auto* beamHost = new QWidget(this);
+  beamView_ = new ui::BeamModelView(beamHost);
+  beamView_->setSettings(settings_);
+  readingChooser_ = new QComboBox(beamHost);
+  readingChooser_->setObjectName(QStringLiteral("readingChooser"));
+  readingChooser_->setToolTip(
+      tr("The reading of the current scan whose beam is drawn; its beam "
+         "is highlighted in the grid view"));
+  readingChooser_->setSizeAdjustPolicy(QComboBox::AdjustToContents);
+  connect(readingChooser_, &QComboBox::activated, this, [this](int index) {
+    chooseBeamSonar(readingChooser_->itemData(index).value<std::size_t>());
+  });
+  auto* readingLabel = new QLabel(tr("Current scan's r&eading:"), beamHost);
+  readingLabel->setBuddy(readingChooser_);
+  auto* readingRow = new QHBoxLayout;
+  // Lined up with the beam view's own controls below.
+  const QMargins inner = beamView_->layout()->contentsMargins();
+  readingRow->setContentsMargins(inner.left(), 0, inner.right(), 0);
+  readingRow->addWidget(readingLabel);
+  readingRow->addWidget(readingChooser_);
+  readingRow->addStretch(1);
+  auto* beamLayout = new QVBoxLayout(beamHost);
+  beamLayout->setContentsMargins(0, 4, 0, 0);
+  beamLayout->addLayout(readingRow);
+  beamLayout->addWidget(beamView_, 1);
+  auto* beamDock = new QDockWidget(tr("Beam Model"), this);
+  beamDock->setObjectName(QStringLiteral("beamModelDock"));
+  beamDock->setWidget(beamHost);
+  beamDock->toggleViewAction()->setShortcut(QKeySequence(tr("Ctrl+Shift+B")));
+
+  // Right of the grid: the beam view (the map summary tabbed behind it), then the panel.
+  addDockWidget(Qt::RightDockWidgetArea, beamDock);
+  splitDockWidget(beamDock, panelDock, Qt::Horizontal);
+  tabifyDockWidget(beamDock, summaryDock);
+  beamDock->raise();
+  resizeDocks({beamDock, panelDock}, {350, 340}, Qt::Horizontal);
   updateSummary();
 }
 
@@ -337,9 +390,17 @@ void MainWindow::choosePose(PoseSource pose) {
   setMapperSettings(s);
 }
 
+namespace {
+bool sameSettings(const MapperSettings& a, const MapperSettings& b) {
+  return a.model == b.model && a.rule == b.rule && a.pose == b.pose && a.parameters == b.parameters;
+}
+}  // namespace
+
 void MainWindow::setMapperSettings(const MapperSettings& settings) {
   settings_ = settings;
   showSettings();
+  // The same settings again (a menu item that is already checked, a panel echo) map nothing new.
+  if (data_ && sameSettings(settings, remap_->settings())) return;
   remap_->setSettings(settings);
 }
 
@@ -356,7 +417,9 @@ void MainWindow::showSettings() {
   s.endGroup();
   if (modelMenu_) rebuildMappingMenu();
   view_->setNativeName(QString::fromStdString(updateRuleInfo(settings.rule).nativeName));
-  if (data_) view_->setRobotAt(data_.get(), settings_.pose, timeline_->currentScan());
+  panel_->setSettings(settings);
+  beamView_->setSettings(settings);
+  showCurrentScan();
   updateSummary();
   updateTitle();
 }
@@ -410,6 +473,8 @@ bool MainWindow::openLog(const QString& path, bool quiet) {
     timeline_->setScanTimes(std::move(times), end);
   }
   hoverLabel_->setText(tr("Hover over the grid to read a cell; drag to pan, wheel to zoom."));
+  chosenSonar_.reset();
+  beamView_->setMaxRange(data_->ring.maxRange);
   showSettings();
   remap_->start(data_, cellSize_, settings_, timeline_->time());
   return true;
@@ -450,10 +515,49 @@ void MainWindow::onMapped(double elapsedMs) {
   updateSummary();
 }
 
-void MainWindow::onTimeChanged(double t, std::size_t scan) {
+void MainWindow::onTimeChanged(double t, std::size_t) {
   if (!data_) return;
-  view_->setRobotAt(data_.get(), settings_.pose, scan);
+  showCurrentScan();
   remap_->setUntil(t);
+}
+
+void MainWindow::showCurrentScan() {
+  if (!data_) return;
+  const std::size_t scan = timeline_->currentScan();
+  view_->setRobotAt(data_.get(), settings_.pose, scan);
+  const std::vector<Reading>& readings = data_->scans[scan].readings;
+  // The user's sonar while this scan has a reading of it, else the first reading with an echo.
+  const Reading* shown = nullptr;
+  for (const Reading& r : readings)
+    if (chosenSonar_ == static_cast<std::size_t>(r.sonar)) shown = &r;
+  for (const Reading& r : readings)
+    if (!shown && r.echo()) shown = &r;
+  if (!shown && !readings.empty()) shown = &readings.front();
+
+  const QSignalBlocker block(readingChooser_);
+  readingChooser_->clear();
+  for (const Reading& r : readings) {
+    readingChooser_->addItem(r.echo() ? tr("sonar %1: %2 m").arg(r.sonar).arg(r.range, 0, 'f', 2)
+                                      : tr("sonar %1: no echo").arg(r.sonar),
+                             QVariant::fromValue(static_cast<std::size_t>(r.sonar)));
+    if (&r == shown) readingChooser_->setCurrentIndex(readingChooser_->count() - 1);
+  }
+  readingChooser_->setEnabled(!readings.empty());
+  beamSonar_ = shown ? std::optional<std::size_t>(shown->sonar) : std::nullopt;
+  view_->setHighlightedSonar(beamSonar_);
+  // No echo: the model's picture of a reading at the maximum range.
+  if (shown) beamView_->setRange(shown->echo() ? shown->range : data_->ring.maxRange);
+}
+
+bool MainWindow::chooseBeamSonar(std::size_t sonar) {
+  if (!data_) return false;
+  for (const Reading& r : data_->scans[timeline_->currentScan()].readings)
+    if (r.sonar == sonar) {
+      chosenSonar_ = sonar;
+      showCurrentScan();
+      return true;
+    }
+  return false;
 }
 
 void MainWindow::updateSummary() {
@@ -676,6 +780,7 @@ void MainWindow::showShortcuts() {
   rows.append({tr("Zoom in / out"), tr("+ / −, mouse wheel, pinch")});
   rows.append({tr("Pan"), tr("arrow keys, drag with the left or middle button")});
   rows.append({tr("Fit to map"), tr("F, Home, double-click")});
+  rows.append({tr("Move a parameter slider"), tr("arrows, Page Up / Down, Home / End")});
   auto* dialog = new QDialog(this);
   dialog->setAttribute(Qt::WA_DeleteOnClose);
   dialog->setWindowTitle(tr("Keyboard Shortcuts"));
