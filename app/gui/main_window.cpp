@@ -26,6 +26,7 @@
 #include <QSvgGenerator>
 #include <QTableWidget>
 #include <QTextBrowser>
+#include <QTimer>
 #include <QVBoxLayout>
 #include <cmath>
 #include <iostream>
@@ -86,6 +87,10 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   setAcceptDrops(true);
   settings_ = lastSettings();
   cellSize_ = lastCellSize();
+  rememberSettingsTimer_ = new QTimer(this);
+  rememberSettingsTimer_->setSingleShot(true);
+  rememberSettingsTimer_->setInterval(1000);
+  connect(rememberSettingsTimer_, &QTimer::timeout, this, &MainWindow::rememberSettings);
 
   statusBar()->addWidget(hoverLabel_, 1);
   statusBar()->addPermanentWidget(remapLabel_);
@@ -117,7 +122,9 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   updateTitle();
 }
 
-MainWindow::~MainWindow() = default;
+MainWindow::~MainWindow() {
+  if (rememberSettingsTimer_->isActive()) rememberSettings();
+}
 
 sg::MapperSettings MainWindow::lastSettings() {
   QSettings s;
@@ -336,8 +343,12 @@ void MainWindow::createMenus() {
 }
 
 void MainWindow::rebuildMappingMenu() {
+  menuSettings_ = settings_;
   modelMenu_->clear();
   ruleMenu_->clear();
+  // The previous groups go with their actions (clear() deletes only the actions).
+  qDeleteAll(modelMenu_->findChildren<QActionGroup*>(Qt::FindDirectChildrenOnly));
+  qDeleteAll(ruleMenu_->findChildren<QActionGroup*>(Qt::FindDirectChildrenOnly));
   auto* models = new QActionGroup(modelMenu_);
   for (const std::string& name : sensorModelNames()) {
     QAction* a = modelMenu_->addAction(QString::fromStdString(sensorModelInfo(name).title));
@@ -406,22 +417,31 @@ void MainWindow::setMapperSettings(const MapperSettings& settings) {
 
 void MainWindow::showSettings() {
   const MapperSettings& settings = settings_;
-  QSettings s;
-  s.setValue("mapping/model", QString::fromStdString(settings.model));
-  s.setValue("mapping/rule", QString::fromStdString(settings.rule));
-  s.setValue("mapping/pose", poseName(settings.pose));
-  s.remove("mapping/parameters");
-  s.beginGroup("mapping/parameters");
-  for (const auto& [name, value] : settings.parameters.values())
-    s.setValue(QString::fromStdString(name), value);
-  s.endGroup();
-  if (modelMenu_) rebuildMappingMenu();
+  // Writing QSettings syncs the file to disk, tens of ms on a busy machine: a slider dragged
+  // across its range would stall the GUI thread on every step. Remembered once the user pauses.
+  rememberSettingsTimer_->start();
+  if (modelMenu_ && (settings.model != menuSettings_.model || settings.rule != menuSettings_.rule ||
+                     settings.pose != menuSettings_.pose))
+    rebuildMappingMenu();
   view_->setNativeName(QString::fromStdString(updateRuleInfo(settings.rule).nativeName));
   panel_->setSettings(settings);
   beamView_->setSettings(settings);
   showCurrentScan();
   updateSummary();
   updateTitle();
+}
+
+void MainWindow::rememberSettings() {
+  rememberSettingsTimer_->stop();
+  QSettings s;
+  s.setValue("mapping/model", QString::fromStdString(settings_.model));
+  s.setValue("mapping/rule", QString::fromStdString(settings_.rule));
+  s.setValue("mapping/pose", poseName(settings_.pose));
+  s.remove("mapping/parameters");
+  s.beginGroup("mapping/parameters");
+  for (const auto& [name, value] : settings_.parameters.values())
+    s.setValue(QString::fromStdString(name), value);
+  s.endGroup();
 }
 
 void MainWindow::setCellSize(double metres) {
@@ -630,6 +650,7 @@ void MainWindow::restoreWindowState() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
+  if (rememberSettingsTimer_->isActive()) rememberSettings();
   QSettings s;
   s.setValue("window/geometry", saveGeometry());
   s.setValue("window/state", saveState());

@@ -19,6 +19,7 @@ class QActionGroup;
 class QComboBox;
 class QLabel;
 class QMenu;
+class QTimer;
 
 namespace sg::ui {
 class BeamModelView;
@@ -85,8 +86,10 @@ class MainWindow : public QMainWindow {
   void chooseModel(const QString& model);
   void chooseRule(const QString& rule);
   void choosePose(sg::PoseSource pose);
-  // Shows settings_ in the menus, title and summary, and remembers it.
+  // Shows settings_ in the menus, title, summary, panel and beam view, and remembers it soon.
   void showSettings();
+  // Writes settings_ to QSettings now.
+  void rememberSettings();
   void updateSummary();
   void updateTitle();
   void onMapped(double elapsedMs);
@@ -124,6 +127,8 @@ class MainWindow : public QMainWindow {
   std::optional<sg::ReferenceMap> reference_;
   QString referencePath_;
   sg::MapperSettings settings_;
+  sg::MapperSettings menuSettings_;  // what the Mapping menu was last built for
+  QTimer* rememberSettingsTimer_ = nullptr;
   double cellSize_ = 0.05;
   double lastRemapMs_ = 0.0;
   QStringList recent_;
