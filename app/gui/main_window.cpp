@@ -91,6 +91,10 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   rememberSettingsTimer_->setSingleShot(true);
   rememberSettingsTimer_->setInterval(1000);
   connect(rememberSettingsTimer_, &QTimer::timeout, this, &MainWindow::rememberSettings);
+  beamSettingsTimer_ = new QTimer(this);
+  beamSettingsTimer_->setSingleShot(true);
+  beamSettingsTimer_->setInterval(100);
+  connect(beamSettingsTimer_, &QTimer::timeout, this, &MainWindow::showBeamSettings);
 
   statusBar()->addWidget(hoverLabel_, 1);
   statusBar()->addPermanentWidget(remapLabel_);
@@ -102,6 +106,9 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   restoreWindowState();
 
   connect(view_, &ui::GridView::hoverText, hoverLabel_, &QLabel::setText);
+  connect(view_, &ui::GridView::repainted, this, [this] {
+    if (beamSettingsPending_ && !remap_->busy()) showBeamSettings();
+  });
   connect(remap_, &ui::RemapController::mapped, this,
           [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64, bool incremental) {
             view_->setMap(std::move(map));
@@ -425,10 +432,24 @@ void MainWindow::showSettings() {
     rebuildMappingMenu();
   view_->setNativeName(QString::fromStdString(updateRuleInfo(settings.rule).nativeName));
   panel_->setSettings(settings);
-  beamView_->setSettings(settings);
+  // The beam view's picture costs 10-20 ms of GUI thread: drawn once the grid shows the new map,
+  // so as not to compete with the re-map and the grid's repaint, or after 100 ms at the latest
+  // (a long re-map of a big log) so that it still follows a dragged slider.
+  if (data_) {
+    beamSettingsPending_ = true;
+    beamSettingsTimer_->start();
+  } else {
+    beamView_->setSettings(settings);
+  }
   showCurrentScan();
   updateSummary();
   updateTitle();
+}
+
+void MainWindow::showBeamSettings() {
+  beamSettingsTimer_->stop();
+  beamSettingsPending_ = false;
+  beamView_->setSettings(settings_);
 }
 
 void MainWindow::rememberSettings() {

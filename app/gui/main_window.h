@@ -88,6 +88,8 @@ class MainWindow : public QMainWindow {
   void choosePose(sg::PoseSource pose);
   // Shows settings_ in the menus, title, summary, panel and beam view, and remembers it soon.
   void showSettings();
+  // Hands settings_ to the beam view (showSettings defers it).
+  void showBeamSettings();
   // Writes settings_ to QSettings now.
   void rememberSettings();
   void updateSummary();
@@ -129,6 +131,8 @@ class MainWindow : public QMainWindow {
   sg::MapperSettings settings_;
   sg::MapperSettings menuSettings_;  // what the Mapping menu was last built for
   QTimer* rememberSettingsTimer_ = nullptr;
+  QTimer* beamSettingsTimer_ = nullptr;
+  bool beamSettingsPending_ = false;
   double cellSize_ = 0.05;
   double lastRemapMs_ = 0.0;
   QStringList recent_;
