@@ -225,7 +225,7 @@ int main(int argc, char** argv) {
         remap->setSettings(settings);
       }
     };
-    std::vector<double> ms, remapMs, handling, drawing;
+    std::vector<double> ms, remapMs, handling, drawing, delivered;
     const auto timing =
         QObject::connect(remap, &sg::ui::RemapController::mapped,
                          [&](auto, double t, quint64, bool) { remapMs.push_back(t); });
@@ -239,6 +239,7 @@ int main(int argc, char** argv) {
       waitForNewest(remap->latestGeneration());
       ms.push_back(static_cast<double>(clock.nsecsElapsed()) * 1e-6);
       drawing.push_back(mappedToShown);
+      delivered.push_back(ms.back() - mappedToShown);
     }
     QObject::disconnect(timing);
     const auto grid = view->map()->spec;
@@ -249,7 +250,8 @@ int main(int argc, char** argv) {
               << " over " << ms.size() << " steps, "
               << (view->backend() == sg::ui::GridView::Backend::OpenGL ? "OpenGL" : "raster")
               << " view\n  change -> repainted " << summarise(ms) << "\n  worker re-map alone  "
-              << summarise(remapMs) << "\n  GUI thread: the change itself " << summarise(handling)
+              << summarise(remapMs) << "\n  change -> map delivered on the GUI thread "
+              << summarise(delivered) << "\n  GUI thread: the change itself " << summarise(handling)
               << "\n  GUI thread: map delivered -> repainted " << summarise(drawing) << '\n';
 
     if (probes > 0) {

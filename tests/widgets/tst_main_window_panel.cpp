@@ -40,6 +40,14 @@ OccupancyMap batchMap(const Dataset& data, const MapperSettings& settings) {
   return m.snapshot();
 }
 
+// The room log in `window`, mapped with HPF × addition on the true pose, 5 cm cells.
+bool openRoom(app::MainWindow& window) {
+  window.setCellSize(0.05);
+  window.setMapperSettings(hpfAddition());
+  window.show();
+  return window.openLog(kRoom, true) && window.waitForMap(60000);
+}
+
 }  // namespace
 
 class TestMainWindowPanel : public QObject {
@@ -56,11 +64,7 @@ class TestMainWindowPanel : public QObject {
 
   void sliderKeysRemapTheLog() {
     app::MainWindow window;
-    window.setCellSize(0.05);
-    window.setMapperSettings(hpfAddition());
-    window.show();
-    QVERIFY(window.openLog(kRoom, true));
-    QVERIFY(window.waitForMap(60000));
+    QVERIFY(openRoom(window));
     const auto before = window.gridView()->map();
     QVERIFY(before->level == batchMap(data_, hpfAddition()).level);
 
@@ -97,11 +101,7 @@ class TestMainWindowPanel : public QObject {
 
   void burstOfSliderMovesDeliversOnlyTheNewest() {
     app::MainWindow window;
-    window.setCellSize(0.05);
-    window.setMapperSettings(hpfAddition());
-    window.show();
-    QVERIFY(window.openLog(kRoom, true));
-    QVERIFY(window.waitForMap(60000));
+    QVERIFY(openRoom(window));
     QSlider* slider = window.parameterPanel()->sliderFor("epsilon");
     QSignalSpy mapped(window.remapController(), &ui::RemapController::mapped);
     QSignalSpy cancelled(window.remapController(), &ui::RemapController::cancelled);
@@ -126,10 +126,7 @@ class TestMainWindowPanel : public QObject {
 
   void outsideChangesShowInThePanelOnce() {
     app::MainWindow window;
-    window.setCellSize(0.05);
-    window.setMapperSettings(hpfAddition());
-    QVERIFY(window.openLog(kRoom, true));
-    QVERIFY(window.waitForMap(60000));
+    QVERIFY(openRoom(window));
     QSignalSpy changed(window.parameterPanel(), &ui::ParameterPanel::settingsChanged);
     const quint64 generation = window.remapController()->latestGeneration();
 
@@ -160,10 +157,7 @@ class TestMainWindowPanel : public QObject {
 
   void beamViewShowsAReadingOfTheCurrentScan() {
     app::MainWindow window;
-    window.setCellSize(0.05);
-    window.setMapperSettings(hpfAddition());
-    QVERIFY(window.openLog(kRoom, true));
-    QVERIFY(window.waitForMap(60000));
+    QVERIFY(openRoom(window));
     window.timeline()->setTime(30.0);  // scan 300 of the 10 Hz log (tst_main_window)
     const Scan& scan = data_.scans[300];
     QCOMPARE(window.timeline()->currentScan(), std::size_t(300));
