@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # Quick start, first command: installs what is missing, builds, maps the bundled room log with the
-# CLI, and opens the desktop app on the same log, already mapped. Without a display it saves a
-# screenshot of the app instead (offscreen platform).
+# CLI, and opens the desktop app on a bundled log of paper 000's test room (raschke-multi, run 1 in
+# motion, with the room's reference walls), already mapped. Without a display it saves a screenshot
+# of the app instead (offscreen platform).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash .ci/build.sh
 mkdir -p build/out
 build/app/cli/sonargrid-cli map --log datasets/room/room.sglog --pose truth \
   --model himm --rule himm --cell 0.05 --png build/out/room-himm.png --legend --scale 4
-app=(build/app/gui/sonargrid datasets/room/room.sglog --pose truth --model himm --rule himm)
+app=(build/app/gui/sonargrid datasets/raschke-multi/in-motion-01.sglog
+  --reference datasets/raschke-multi/world.json --pose truth --model parameterized --rule bayes)
 if [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; then
   exec "${app[@]}"
 fi

@@ -2,7 +2,7 @@
 
 #include <QComboBox>
 #include <QDoubleSpinBox>
-#include <QHBoxLayout>
+#include <QGridLayout>
 #include <QLabel>
 #include <QPainter>
 #include <QSignalBlocker>
@@ -22,7 +22,7 @@ constexpr double kRangeStep = 0.01;  // m per slider position
 class BeamModelView::Canvas : public QWidget {
  public:
   explicit Canvas(BeamModelView* view) : QWidget(view), view_(view) {
-    setMinimumSize(480, 420);
+    setMinimumSize(260, 280);
     setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Expanding);
   }
   void invalidate() {
@@ -66,16 +66,20 @@ BeamModelView::BeamModelView(QWidget* parent) : QWidget(parent) {
     compare_->addItem(QString::fromStdString(sensorModelInfo(name).title),
                       QString::fromStdString(name));
   }
+  compare_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+  compare_->setMinimumContentsLength(12);
   auto* compareLabel = new QLabel(tr("&Compare with:"), this);
   compareLabel->setBuddy(compare_);
 
-  auto* controls = new QHBoxLayout;
-  controls->addWidget(rangeLabel);
-  controls->addWidget(rangeSlider_, 1);
-  controls->addWidget(rangeSpin_);
-  controls->addSpacing(16);
-  controls->addWidget(compareLabel);
-  controls->addWidget(compare_);
+  // Two rows, so that the slider keeps its length in a narrow dock.
+  auto* controls = new QGridLayout;
+  controls->setContentsMargins(0, 0, 0, 0);
+  controls->addWidget(rangeLabel, 0, 0);
+  controls->addWidget(rangeSlider_, 0, 1);
+  controls->addWidget(rangeSpin_, 0, 2);
+  controls->addWidget(compareLabel, 1, 0);
+  controls->addWidget(compare_, 1, 1, 1, 2);
+  controls->setColumnStretch(1, 1);
 
   canvas_ = new Canvas(this);
   auto* layout = new QVBoxLayout(this);

@@ -37,7 +37,7 @@ class BeamModelView : public QWidget {
   std::vector<BeamScene> scenes() const;
   QImage render(QSize size) const { return renderBeamModel(scenes(), size); }
 
-  QSize sizeHint() const override { return {960, 860}; }
+  QSize sizeHint() const override { return {420, 460}; }
 
  signals:
   // The user moved s.

@@ -54,6 +54,7 @@ struct BeamCone {
   double halfAngle = 0.0;
   double range = 0.0;
   bool echo = true;
+  std::size_t sonarIndex = 0;  // the transducer's index in the ring
 };
 
 // Everything drawn besides the cells. World metres throughout.
@@ -66,6 +67,8 @@ struct GridScene {
   double robotRadius = 0.25;   // Pioneer 3-DX: about 0.5 m across
   std::vector<Pose2D> sonars;  // world poses of the ring's transducers at the robot's pose
   std::vector<BeamCone> beams;
+  // The sonar whose beam is drawn highlighted (the one the beam-model view shows), if any.
+  std::optional<std::size_t> highlightedSonar;
 };
 
 // The reference map as polylines in metres (a raster reference contributes none).

@@ -121,6 +121,12 @@ void GridView::setRobotAt(const Dataset* dataset, PoseSource pose, std::size_t s
   refresh(false);
 }
 
+void GridView::setHighlightedSonar(std::optional<std::size_t> sonar) {
+  if (scene_.highlightedSonar == sonar) return;
+  scene_.highlightedSonar = sonar;
+  refresh(false);
+}
+
 void GridView::setLevelPalette(const LevelPalette& palette) {
   palette_ = palette;
   if (backend_ == Backend::OpenGL) static_cast<GridGlSurface*>(surface_)->paletteChanged();

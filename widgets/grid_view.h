@@ -36,6 +36,8 @@ class GridView : public QWidget {
   void setReferenceLines(std::vector<std::vector<Position>> lines);
   // The robot, ring, beams and path at scan `scan` of `dataset` (nothing when it is null).
   void setRobotAt(const Dataset* dataset, PoseSource pose, std::size_t scan);
+  // Draws this sonar's beam of the current scan highlighted (nullopt: none).
+  void setHighlightedSonar(std::optional<std::size_t> sonar);
   const GridScene& scene() const { return scene_; }
 
   void setLevelPalette(const LevelPalette& palette);

@@ -121,6 +121,11 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
     preset_->setItemData(preset_->count() - 1, presetToolTip(p), Qt::ToolTipRole);
   }
 
+  // Long titles are elided rather than widening the dock; the tooltips give them whole.
+  for (QComboBox* box : {model_, rule_, preset_}) {
+    box->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    box->setMinimumContentsLength(12);
+  }
   auto* choosers = new QFormLayout;
   choosers->addRow(tr("Sensor &model:"), model_);
   choosers->addRow(tr("Update &rule:"), rule_);
@@ -134,8 +139,10 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   rowsHost_ = new QWidget;
   rowsLayout_ = new QVBoxLayout(rowsHost_);
   rowsLayout_->setContentsMargins(0, 0, 0, 0);
+  rowsLayout_->addStretch(1);  // the rows stay at the top; the groups go before this
   auto* scroll = new QScrollArea(this);
   scroll->setWidgetResizable(true);
+  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
   scroll->setFrameShape(QFrame::NoFrame);
   scroll->setWidget(rowsHost_);
 
@@ -315,8 +322,9 @@ void ParameterPanel::rebuildRows() {
   rows_.clear();
   const ModelInfo& model = sensorModelInfo(settings_.model);
   const RuleInfo& rule = updateRuleInfo(settings_.rule);
-  addRows(model.parameters, tr("Model: %1").arg(qs(model.title)));
-  addRows(rule.parameters, tr("Rule: %1").arg(qs(rule.title)));
+  // Short headings (the choosers above show the titles): a long one would widen the dock.
+  addRows(model.parameters, tr("Model (%1)").arg(qs(model.name)));
+  addRows(rule.parameters, tr("Rule (%1)").arg(qs(rule.name)));
   showValues();
 }
 
@@ -387,7 +395,7 @@ void ParameterPanel::addRows(const std::vector<ParameterSpec>& specs, const QStr
     });
     rows_.push_back(row);
   }
-  rowsLayout_->addWidget(box);
+  rowsLayout_->insertWidget(rowsLayout_->count() - 1, box);
 }
 
 void ParameterPanel::showValues() {

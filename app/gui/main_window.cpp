@@ -4,6 +4,7 @@
 #include <QActionGroup>
 #include <QApplication>
 #include <QCloseEvent>
+#include <QComboBox>
 #include <QDialog>
 #include <QDialogButtonBox>
 #include <QDir>
@@ -13,6 +14,7 @@
 #include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
+#include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
 #include <QMenuBar>
@@ -24,11 +26,14 @@
 #include <QSvgGenerator>
 #include <QTableWidget>
 #include <QTextBrowser>
+#include <QTimer>
 #include <QVBoxLayout>
 #include <cmath>
 #include <iostream>
 
+#include "beam_model_view.h"
 #include "datasets_location.h"
+#include "parameter_panel.h"
 #include "remap_controller.h"
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/io/sglog.h"
@@ -82,6 +87,14 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   setAcceptDrops(true);
   settings_ = lastSettings();
   cellSize_ = lastCellSize();
+  rememberSettingsTimer_ = new QTimer(this);
+  rememberSettingsTimer_->setSingleShot(true);
+  rememberSettingsTimer_->setInterval(1000);
+  connect(rememberSettingsTimer_, &QTimer::timeout, this, &MainWindow::rememberSettings);
+  beamSettingsTimer_ = new QTimer(this);
+  beamSettingsTimer_->setSingleShot(true);
+  beamSettingsTimer_->setInterval(100);
+  connect(beamSettingsTimer_, &QTimer::timeout, this, &MainWindow::showBeamSettings);
 
   statusBar()->addWidget(hoverLabel_, 1);
   statusBar()->addPermanentWidget(remapLabel_);
@@ -93,10 +106,15 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   restoreWindowState();
 
   connect(view_, &ui::GridView::hoverText, hoverLabel_, &QLabel::setText);
+  connect(view_, &ui::GridView::repainted, this, [this] {
+    if (beamSettingsPending_ && !remap_->busy()) showBeamSettings();
+  });
   connect(remap_, &ui::RemapController::mapped, this,
-          [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64, bool) {
+          [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64, bool incremental) {
             view_->setMap(std::move(map));
             onMapped(ms);
+            // The panel shows what a re-map of the log costs, not a continuation while playing.
+            if (!incremental) panel_->showRemapTime(ms);
           });
   connect(remap_, &ui::RemapController::failed, this, [this](const QString& message, quint64) {
     remapLabel_->setText(tr("mapping failed"));
@@ -111,7 +129,9 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   updateTitle();
 }
 
-MainWindow::~MainWindow() = default;
+MainWindow::~MainWindow() {
+  if (rememberSettingsTimer_->isActive()) rememberSettings();
+}
 
 sg::MapperSettings MainWindow::lastSettings() {
   QSettings s;
@@ -220,7 +240,54 @@ void MainWindow::createDocks() {
   auto* summaryDock = new QDockWidget(tr("Map"), this);
   summaryDock->setObjectName(QStringLiteral("mapDock"));
   summaryDock->setWidget(summary_);
-  addDockWidget(Qt::RightDockWidgetArea, summaryDock);
+
+  // The parameter panel: its changes come back through setMapperSettings, which shows them
+  // everywhere else (the panel itself ignores settings it already holds).
+  panel_ = new ui::ParameterPanel(this);
+  panel_->setSettings(settings_);
+  connect(panel_, &ui::ParameterPanel::settingsChanged, this, &MainWindow::setMapperSettings);
+  auto* panelDock = new QDockWidget(tr("Parameters"), this);
+  panelDock->setObjectName(QStringLiteral("parametersDock"));
+  panelDock->setWidget(panel_);
+  panelDock->toggleViewAction()->setShortcut(QKeySequence(tr("Ctrl+Shift+P")));
+
+  // The beam-model view of one reading of the current scan, with the panel's model.
+  auto* beamHost = new QWidget(this);
+  beamView_ = new ui::BeamModelView(beamHost);
+  beamView_->setSettings(settings_);
+  readingChooser_ = new QComboBox(beamHost);
+  readingChooser_->setObjectName(QStringLiteral("readingChooser"));
+  readingChooser_->setToolTip(
+      tr("The reading of the current scan whose beam is drawn; its beam "
+         "is highlighted in the grid view"));
+  readingChooser_->setSizeAdjustPolicy(QComboBox::AdjustToContents);
+  connect(readingChooser_, &QComboBox::activated, this, [this](int index) {
+    chooseBeamSonar(readingChooser_->itemData(index).value<std::size_t>());
+  });
+  auto* readingLabel = new QLabel(tr("Current scan's r&eading:"), beamHost);
+  readingLabel->setBuddy(readingChooser_);
+  auto* readingRow = new QHBoxLayout;
+  // Lined up with the beam view's own controls below.
+  const QMargins inner = beamView_->layout()->contentsMargins();
+  readingRow->setContentsMargins(inner.left(), 0, inner.right(), 0);
+  readingRow->addWidget(readingLabel);
+  readingRow->addWidget(readingChooser_);
+  readingRow->addStretch(1);
+  auto* beamLayout = new QVBoxLayout(beamHost);
+  beamLayout->setContentsMargins(0, 4, 0, 0);
+  beamLayout->addLayout(readingRow);
+  beamLayout->addWidget(beamView_, 1);
+  auto* beamDock = new QDockWidget(tr("Beam Model"), this);
+  beamDock->setObjectName(QStringLiteral("beamModelDock"));
+  beamDock->setWidget(beamHost);
+  beamDock->toggleViewAction()->setShortcut(QKeySequence(tr("Ctrl+Shift+B")));
+
+  // Right of the grid: the beam view (the map summary tabbed behind it), then the panel.
+  addDockWidget(Qt::RightDockWidgetArea, beamDock);
+  splitDockWidget(beamDock, panelDock, Qt::Horizontal);
+  tabifyDockWidget(beamDock, summaryDock);
+  beamDock->raise();
+  resizeDocks({beamDock, panelDock}, {350, 340}, Qt::Horizontal);
   updateSummary();
 }
 
@@ -283,8 +350,12 @@ void MainWindow::createMenus() {
 }
 
 void MainWindow::rebuildMappingMenu() {
+  menuSettings_ = settings_;
   modelMenu_->clear();
   ruleMenu_->clear();
+  // The previous groups go with their actions (clear() deletes only the actions).
+  qDeleteAll(modelMenu_->findChildren<QActionGroup*>(Qt::FindDirectChildrenOnly));
+  qDeleteAll(ruleMenu_->findChildren<QActionGroup*>(Qt::FindDirectChildrenOnly));
   auto* models = new QActionGroup(modelMenu_);
   for (const std::string& name : sensorModelNames()) {
     QAction* a = modelMenu_->addAction(QString::fromStdString(sensorModelInfo(name).title));
@@ -337,28 +408,61 @@ void MainWindow::choosePose(PoseSource pose) {
   setMapperSettings(s);
 }
 
+namespace {
+bool sameSettings(const MapperSettings& a, const MapperSettings& b) {
+  return a.model == b.model && a.rule == b.rule && a.pose == b.pose && a.parameters == b.parameters;
+}
+}  // namespace
+
 void MainWindow::setMapperSettings(const MapperSettings& settings) {
   settings_ = settings;
   showSettings();
+  // The same settings again (a menu item that is already checked, a panel echo) map nothing new.
+  if (data_ && sameSettings(settings, remap_->settings())) return;
   remap_->setSettings(settings);
 }
 
 void MainWindow::showSettings() {
   const MapperSettings& settings = settings_;
-  QSettings s;
-  s.setValue("mapping/model", QString::fromStdString(settings.model));
-  s.setValue("mapping/rule", QString::fromStdString(settings.rule));
-  s.setValue("mapping/pose", poseName(settings.pose));
-  s.remove("mapping/parameters");
-  s.beginGroup("mapping/parameters");
-  for (const auto& [name, value] : settings.parameters.values())
-    s.setValue(QString::fromStdString(name), value);
-  s.endGroup();
-  if (modelMenu_) rebuildMappingMenu();
+  // Writing QSettings syncs the file to disk, tens of ms on a busy machine: a slider dragged
+  // across its range would stall the GUI thread on every step. Remembered once the user pauses.
+  rememberSettingsTimer_->start();
+  if (modelMenu_ && (settings.model != menuSettings_.model || settings.rule != menuSettings_.rule ||
+                     settings.pose != menuSettings_.pose))
+    rebuildMappingMenu();
   view_->setNativeName(QString::fromStdString(updateRuleInfo(settings.rule).nativeName));
-  if (data_) view_->setRobotAt(data_.get(), settings_.pose, timeline_->currentScan());
+  panel_->setSettings(settings);
+  // The beam view's picture costs 10-20 ms of GUI thread: drawn once the grid shows the new map,
+  // so as not to compete with the re-map and the grid's repaint, or after 100 ms at the latest
+  // (a long re-map of a big log) so that it still follows a dragged slider.
+  if (data_) {
+    beamSettingsPending_ = true;
+    beamSettingsTimer_->start();
+  } else {
+    beamView_->setSettings(settings);
+  }
+  showCurrentScan();
   updateSummary();
   updateTitle();
+}
+
+void MainWindow::showBeamSettings() {
+  beamSettingsTimer_->stop();
+  beamSettingsPending_ = false;
+  beamView_->setSettings(settings_);
+}
+
+void MainWindow::rememberSettings() {
+  rememberSettingsTimer_->stop();
+  QSettings s;
+  s.setValue("mapping/model", QString::fromStdString(settings_.model));
+  s.setValue("mapping/rule", QString::fromStdString(settings_.rule));
+  s.setValue("mapping/pose", poseName(settings_.pose));
+  s.remove("mapping/parameters");
+  s.beginGroup("mapping/parameters");
+  for (const auto& [name, value] : settings_.parameters.values())
+    s.setValue(QString::fromStdString(name), value);
+  s.endGroup();
 }
 
 void MainWindow::setCellSize(double metres) {
@@ -410,6 +514,8 @@ bool MainWindow::openLog(const QString& path, bool quiet) {
     timeline_->setScanTimes(std::move(times), end);
   }
   hoverLabel_->setText(tr("Hover over the grid to read a cell; drag to pan, wheel to zoom."));
+  chosenSonar_.reset();
+  beamView_->setMaxRange(data_->ring.maxRange);
   showSettings();
   remap_->start(data_, cellSize_, settings_, timeline_->time());
   return true;
@@ -450,10 +556,49 @@ void MainWindow::onMapped(double elapsedMs) {
   updateSummary();
 }
 
-void MainWindow::onTimeChanged(double t, std::size_t scan) {
+void MainWindow::onTimeChanged(double t, std::size_t) {
   if (!data_) return;
-  view_->setRobotAt(data_.get(), settings_.pose, scan);
+  showCurrentScan();
   remap_->setUntil(t);
+}
+
+void MainWindow::showCurrentScan() {
+  if (!data_) return;
+  const std::size_t scan = timeline_->currentScan();
+  view_->setRobotAt(data_.get(), settings_.pose, scan);
+  const std::vector<Reading>& readings = data_->scans[scan].readings;
+  // The user's sonar while this scan has a reading of it, else the first reading with an echo.
+  const Reading* shown = nullptr;
+  for (const Reading& r : readings)
+    if (chosenSonar_ == static_cast<std::size_t>(r.sonar)) shown = &r;
+  for (const Reading& r : readings)
+    if (!shown && r.echo()) shown = &r;
+  if (!shown && !readings.empty()) shown = &readings.front();
+
+  const QSignalBlocker block(readingChooser_);
+  readingChooser_->clear();
+  for (const Reading& r : readings) {
+    readingChooser_->addItem(r.echo() ? tr("sonar %1: %2 m").arg(r.sonar).arg(r.range, 0, 'f', 2)
+                                      : tr("sonar %1: no echo").arg(r.sonar),
+                             QVariant::fromValue(static_cast<std::size_t>(r.sonar)));
+    if (&r == shown) readingChooser_->setCurrentIndex(readingChooser_->count() - 1);
+  }
+  readingChooser_->setEnabled(!readings.empty());
+  beamSonar_ = shown ? std::optional<std::size_t>(shown->sonar) : std::nullopt;
+  view_->setHighlightedSonar(beamSonar_);
+  // No echo: the model's picture of a reading at the maximum range.
+  if (shown) beamView_->setRange(shown->echo() ? shown->range : data_->ring.maxRange);
+}
+
+bool MainWindow::chooseBeamSonar(std::size_t sonar) {
+  if (!data_) return false;
+  for (const Reading& r : data_->scans[timeline_->currentScan()].readings)
+    if (r.sonar == sonar) {
+      chosenSonar_ = sonar;
+      showCurrentScan();
+      return true;
+    }
+  return false;
 }
 
 void MainWindow::updateSummary() {
@@ -526,6 +671,7 @@ void MainWindow::restoreWindowState() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* event) {
+  if (rememberSettingsTimer_->isActive()) rememberSettings();
   QSettings s;
   s.setValue("window/geometry", saveGeometry());
   s.setValue("window/state", saveState());
@@ -676,6 +822,7 @@ void MainWindow::showShortcuts() {
   rows.append({tr("Zoom in / out"), tr("+ / −, mouse wheel, pinch")});
   rows.append({tr("Pan"), tr("arrow keys, drag with the left or middle button")});
   rows.append({tr("Fit to map"), tr("F, Home, double-click")});
+  rows.append({tr("Move a parameter slider"), tr("arrows, Page Up / Down, Home / End")});
   auto* dialog = new QDialog(this);
   dialog->setAttribute(Qt::WA_DeleteOnClose);
   dialog->setWindowTitle(tr("Keyboard Shortcuts"));

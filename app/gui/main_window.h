@@ -16,10 +16,14 @@
 
 class QAction;
 class QActionGroup;
+class QComboBox;
 class QLabel;
 class QMenu;
+class QTimer;
 
 namespace sg::ui {
+class BeamModelView;
+class ParameterPanel;
 class RemapController;
 class Timeline;
 }  // namespace sg::ui
@@ -39,7 +43,8 @@ class MainWindow : public QMainWindow {
   bool openLog(const QString& path, bool quiet = false);
   bool openReference(const QString& path, bool quiet = false);
 
-  // Model, rule, parameters and pose: re-maps the log.
+  // Model, rule, parameters and pose: re-maps the log (not when they equal the settings of the
+  // current map), and shows them in the menus, the title, the parameter panel and the beam view.
   void setMapperSettings(const sg::MapperSettings& settings);
   const sg::MapperSettings& mapperSettings() const { return settings_; }
   void setCellSize(double metres);
@@ -47,6 +52,13 @@ class MainWindow : public QMainWindow {
   ui::GridView* gridView() const { return view_; }
   ui::Timeline* timeline() const { return timeline_; }
   ui::RemapController* remapController() const { return remap_; }
+  ui::ParameterPanel* parameterPanel() const { return panel_; }
+  ui::BeamModelView* beamModelView() const { return beamView_; }
+  // The sonar whose reading of the current scan the beam view shows (highlighted in the grid).
+  std::optional<std::size_t> beamSonar() const { return beamSonar_; }
+  // Shows sonar `sonar`'s reading of the current scan in the beam view from now on (while the
+  // scans hold one); false when the current scan has no reading of it.
+  bool chooseBeamSonar(std::size_t sonar);
   const QStringList& recentFiles() const { return recent_; }
 
   // Blocks (running the event loop) until the newest requested map has arrived; false on timeout
@@ -74,12 +86,18 @@ class MainWindow : public QMainWindow {
   void chooseModel(const QString& model);
   void chooseRule(const QString& rule);
   void choosePose(sg::PoseSource pose);
-  // Shows settings_ in the menus, title and summary, and remembers it.
+  // Shows settings_ in the menus, title, summary, panel and beam view, and remembers it soon.
   void showSettings();
+  // Hands settings_ to the beam view (showSettings defers it).
+  void showBeamSettings();
+  // Writes settings_ to QSettings now.
+  void rememberSettings();
   void updateSummary();
   void updateTitle();
   void onMapped(double elapsedMs);
   void onTimeChanged(double t, std::size_t scan);
+  // The robot, beams and beam-view reading of the timeline's current scan.
+  void showCurrentScan();
   bool reportError(const QString& title, const QString& message, bool quiet);
 
   void openLogDialog();
@@ -96,6 +114,11 @@ class MainWindow : public QMainWindow {
 
   ui::GridView* view_;
   ui::Timeline* timeline_ = nullptr;
+  ui::ParameterPanel* panel_ = nullptr;
+  ui::BeamModelView* beamView_ = nullptr;
+  QComboBox* readingChooser_ = nullptr;
+  std::optional<std::size_t> chosenSonar_;  // the user's pick; none: the first reading with echo
+  std::optional<std::size_t> beamSonar_;    // what the beam view shows now
   ui::RemapController* remap_;
   QLabel* hoverLabel_;
   QLabel* remapLabel_;
@@ -106,6 +129,10 @@ class MainWindow : public QMainWindow {
   std::optional<sg::ReferenceMap> reference_;
   QString referencePath_;
   sg::MapperSettings settings_;
+  sg::MapperSettings menuSettings_;  // what the Mapping menu was last built for
+  QTimer* rememberSettingsTimer_ = nullptr;
+  QTimer* beamSettingsTimer_ = nullptr;
+  bool beamSettingsPending_ = false;
   double cellSize_ = 0.05;
   double lastRemapMs_ = 0.0;
   QStringList recent_;

@@ -1,25 +1,133 @@
-// Slider-change -> repainted-view latency (issue 5, item 10): drives RemapController + GridView as
-// the parameter panel will, changing one parameter per step, and reports the median and p95 of the
-// time from the request to the first repaint showing its map. Not run by ctest.
+// Slider-change -> repainted-view latency (issue 5, item 10). Not run by ctest.
 //
 //   bench_remap_latency LOG [--model M] [--rule R] [--param NAME] [--steps N] [--pose odom|truth]
+//                       [--cell METRES] [--controller] [--probe N]
 //
-// It sweeps NAME (default: the model's first parameter) across its declared range in N steps
-// (default 40), waiting for each map before the next request. Run it under xvfb-run for the OpenGL
-// surface, or with QT_QPA_PLATFORM=offscreen for the raster one.
+// By default it opens LOG in the app's MainWindow (parameter panel, beam view and all), sets the
+// panel's slider of NAME (default: the model's first parameter) to N positions across its range
+// (default 40), one at a time, and reports the median and p95 of the time from setting the slider
+// to the first repaint of the grid view showing the map of that value. --controller drives a bare
+// RemapController + GridView instead (no panel, no window), to tell the GUI's share apart.
+//
+// --probe N then re-maps N more times (default 0) while a 16 ms timer on the GUI thread (1) records
+// how late it fires, (2) posts a mouse move over the grid view and times it until the hover
+// read-out changes, and (3) every fourth tick posts an arrow key (a pan) and times it until the
+// view has repainted: the view stays interactive while re-mapping when those stay within a frame or
+// two. The same probes over an idle second give the baseline of the (possibly loaded) machine.
+//
+// Run it under xvfb-run for the OpenGL surface, or with QT_QPA_PLATFORM=offscreen for the raster
+// one.
 
 #include <QApplication>
 #include <QElapsedTimer>
 #include <QEventLoop>
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QSlider>
+#include <QStandardPaths>
+#include <QTimer>
 #include <algorithm>
+#include <cmath>
+#include <functional>
 #include <iostream>
+#include <limits>
 
 #include "grid_view.h"
+#include "main_window.h"
+#include "parameter_panel.h"
 #include "remap_controller.h"
 #include "sonargrid/io/sglog.h"
 
+namespace {
+
+struct Summary {
+  double median = 0.0, p95 = 0.0, max = 0.0;
+  std::size_t count = 0;
+};
+
+Summary summarise(std::vector<double> ms) {
+  Summary s;
+  s.count = ms.size();
+  if (ms.empty()) return s;
+  std::sort(ms.begin(), ms.end());
+  auto quantile = [&](double q) {
+    return ms[static_cast<std::size_t>(std::ceil(q * static_cast<double>(ms.size())) - 1)];
+  };
+  s.median = quantile(0.5);
+  s.p95 = quantile(0.95);
+  s.max = ms.back();
+  return s;
+}
+
+std::ostream& operator<<(std::ostream& out, const Summary& s) {
+  return out << "median " << s.median << " ms, p95 " << s.p95 << " ms, max " << s.max << " ms (n "
+             << s.count << ")";
+}
+
+// The 16 ms timer's lateness and the hover and pan round trips, while `busy` holds.
+struct Probes {
+  std::vector<double> timerLate, hover, pan;
+};
+
+Probes probe(sg::ui::GridView& view, const std::function<bool()>& busy) {
+  Probes out;
+  QTimer timer;
+  timer.setTimerType(Qt::PreciseTimer);
+  timer.setInterval(16);
+  QElapsedTimer clock;
+  clock.start();
+  qint64 lastTick = clock.nsecsElapsed();
+  qint64 hoverPosted = -1, panPosted = -1;
+  int tick = 0;
+  const auto onHover = QObject::connect(&view, &sg::ui::GridView::hoverText, [&] {
+    if (hoverPosted < 0) return;
+    out.hover.push_back(static_cast<double>(clock.nsecsElapsed() - hoverPosted) * 1e-6);
+    hoverPosted = -1;
+  });
+  const auto onPaint = QObject::connect(&view, &sg::ui::GridView::repainted, [&] {
+    if (panPosted < 0) return;
+    out.pan.push_back(static_cast<double>(clock.nsecsElapsed() - panPosted) * 1e-6);
+    panPosted = -1;
+  });
+  QObject::connect(&timer, &QTimer::timeout, [&] {
+    const qint64 now = clock.nsecsElapsed();
+    out.timerLate.push_back(std::max(0.0, static_cast<double>(now - lastTick) * 1e-6 - 16.0));
+    lastTick = now;
+    ++tick;
+    const QPointF at(view.width() * (0.3 + 0.4 * (tick % 7) / 7.0), view.height() * 0.5);
+    if (hoverPosted < 0) {
+      hoverPosted = now;
+      QCoreApplication::postEvent(
+          &view, new QMouseEvent(QEvent::MouseMove, at, view.mapToGlobal(at), Qt::NoButton,
+                                 Qt::NoButton, Qt::NoModifier));
+    }
+    if (tick % 4 == 0 && panPosted < 0) {
+      panPosted = now;
+      const int key = (tick / 4) % 2 ? Qt::Key_Left : Qt::Key_Right;  // back and forth
+      QCoreApplication::postEvent(&view, new QKeyEvent(QEvent::KeyPress, key, Qt::NoModifier));
+    }
+  });
+  timer.start();
+  while (busy()) QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents, 50);
+  timer.stop();
+  QObject::disconnect(onHover);
+  QObject::disconnect(onPaint);
+  return out;
+}
+
+void report(const char* what, const Probes& p) {
+  std::cout << "  " << what << ": 16 ms timer late " << summarise(p.timerLate)
+            << "\n    hover -> read-out " << summarise(p.hover) << "\n    pan key -> repainted "
+            << summarise(p.pan) << '\n';
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   QApplication app(argc, argv);
+  QStandardPaths::setTestModeEnabled(true);  // the window's QSettings go to a scratch location
+  QCoreApplication::setOrganizationName("SonarGridBench");
+  QCoreApplication::setApplicationName("bench_remap_latency");
   const QStringList args = app.arguments();
   auto option = [&](const QString& name, const QString& fallback) {
     const qsizetype i = args.indexOf(name);
@@ -27,7 +135,7 @@ int main(int argc, char** argv) {
   };
   if (args.size() < 2 || args[1].startsWith("--")) {
     std::cerr << "usage: bench_remap_latency LOG [--model M] [--rule R] [--param NAME] "
-                 "[--steps N] [--pose odom|truth]\n";
+                 "[--steps N] [--pose odom|truth] [--cell METRES] [--controller] [--probe N]\n";
     return 2;
   }
   try {
@@ -46,51 +154,126 @@ int main(int argc, char** argv) {
       if (s.name == param) spec = &s;
     if (!spec) throw std::runtime_error("unknown --param " + param);
     const int steps = std::max(2, option("--steps", "40").toInt());
+    const int probes = std::max(0, option("--probe", "0").toInt());
+    const double cell = option("--cell", "0.05").toDouble();
+    const bool bare = args.contains("--controller");
 
-    sg::ui::GridView view;
-    view.resize(1000, 700);
-    view.show();
-    sg::ui::RemapController remap;
+    // Either the whole window or a bare controller + view.
+    std::unique_ptr<sg::app::MainWindow> window;
+    std::unique_ptr<sg::ui::GridView> bareView;
+    std::unique_ptr<sg::ui::RemapController> bareRemap;
+    sg::ui::GridView* view = nullptr;
+    sg::ui::RemapController* remap = nullptr;
+    QSlider* slider = nullptr;
+    if (bare) {
+      bareView = std::make_unique<sg::ui::GridView>();
+      bareRemap = std::make_unique<sg::ui::RemapController>();
+      view = bareView.get();
+      remap = bareRemap.get();
+      view->resize(1000, 700);
+      QObject::connect(remap, &sg::ui::RemapController::mapped, view,
+                       [view](std::shared_ptr<const sg::OccupancyMap> map, double, quint64, bool) {
+                         view->setMap(std::move(map));
+                       });
+      view->show();
+      remap->start(data, cell, settings, std::numeric_limits<double>::infinity());
+    } else {
+      window = std::make_unique<sg::app::MainWindow>();
+      window->resize(1280, 800);
+      window->setCellSize(cell);
+      window->setMapperSettings(settings);
+      window->show();
+      if (!window->openLog(args[1], true)) return 2;
+      view = window->gridView();
+      remap = window->remapController();
+      slider = window->parameterPanel()->sliderFor(QString::fromStdString(param));
+      if (!slider) throw std::runtime_error("the panel has no slider for " + param);
+    }
+
+    // Repaints after the newest map arrived; the clock stops at the first one.
     bool shown = false;
-    QObject::connect(&remap, &sg::ui::RemapController::mapped, &view,
-                     [&](std::shared_ptr<const sg::OccupancyMap> map, double, quint64, bool) {
-                       view.setMap(std::move(map));
+    QElapsedTimer sinceMapped;
+    double mappedToShown = 0.0;
+    QObject::connect(remap, &sg::ui::RemapController::mapped, view,
+                     [&](auto, double, quint64, bool) {
                        shown = false;
+                       sinceMapped.start();
                      });
-    QObject::connect(&view, &sg::ui::GridView::repainted, [&] { shown = true; });
-
-    auto requestAndWait = [&](const sg::MapperSettings& s) {
-      QElapsedTimer clock;
-      clock.start();
-      const quint64 before = remap.latestGeneration();
+    QObject::connect(view, &sg::ui::GridView::repainted, [&] {
+      if (!shown) mappedToShown = static_cast<double>(sinceMapped.nsecsElapsed()) * 1e-6;
+      shown = true;
+    });
+    auto waitForNewest = [&](quint64 generation) {
       bool delivered = false;
       const auto c =
-          QObject::connect(&remap, &sg::ui::RemapController::mapped,
-                           [&](auto, double, quint64 g, bool) { delivered = g == before + 1; });
-      remap.setSettings(s);
+          QObject::connect(remap, &sg::ui::RemapController::mapped,
+                           [&](auto, double, quint64 g, bool) { delivered = g == generation; });
       while (!(delivered && shown)) QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents);
       QObject::disconnect(c);
-      return static_cast<double>(clock.nsecsElapsed()) * 1e-6;
     };
-    remap.start(data, 0.05, settings, std::numeric_limits<double>::infinity());
-    requestAndWait(settings);  // warm-up: first map, view fitted
+    waitForNewest(remap->latestGeneration());  // warm-up: first map, view fitted
 
-    std::vector<double> ms;
-    for (int i = 0; i < steps; ++i) {
-      const double v = spec->min + (spec->max - spec->min) * (i + 0.5) / steps;
-      settings.parameters.set(param, spec->integer ? std::round(v) : v);
-      ms.push_back(requestAndWait(settings));
-    }
-    std::sort(ms.begin(), ms.end());
-    auto quantile = [&](double q) {
-      return ms[static_cast<std::size_t>(std::ceil(q * static_cast<double>(ms.size())) - 1)];
+    // Slider positions (panel) or values (bare) across the range.
+    auto change = [&](int i) {
+      const double f = (i + 0.5) / steps;
+      if (slider) {
+        slider->setValue(static_cast<int>(
+            std::lround(slider->minimum() + f * (slider->maximum() - slider->minimum()))));
+      } else {
+        const double v = spec->min + (spec->max - spec->min) * f;
+        settings.parameters.set(param, spec->integer ? std::round(v) : v);
+        remap->setSettings(settings);
+      }
     };
-    std::cout << args[1].toStdString() << ": " << data->readingCount() << " readings, "
-              << settings.model << " x " << settings.rule << ", sweeping " << param << " over "
-              << steps << " steps, "
-              << (view.backend() == sg::ui::GridView::Backend::OpenGL ? "OpenGL" : "raster")
-              << " view: request -> repainted median " << quantile(0.5) << " ms, p95 "
-              << quantile(0.95) << " ms, max " << ms.back() << " ms\n";
+    std::vector<double> ms, remapMs, handling, drawing, delivered;
+    const auto timing =
+        QObject::connect(remap, &sg::ui::RemapController::mapped,
+                         [&](auto, double t, quint64, bool) { remapMs.push_back(t); });
+    for (int i = 0; i < steps; ++i) {
+      QElapsedTimer clock;
+      clock.start();
+      const quint64 before = remap->latestGeneration();
+      change(i);
+      if (remap->latestGeneration() == before) continue;  // the same slider position
+      handling.push_back(static_cast<double>(clock.nsecsElapsed()) * 1e-6);
+      waitForNewest(remap->latestGeneration());
+      ms.push_back(static_cast<double>(clock.nsecsElapsed()) * 1e-6);
+      drawing.push_back(mappedToShown);
+      delivered.push_back(ms.back() - mappedToShown);
+    }
+    QObject::disconnect(timing);
+    const auto grid = view->map()->spec;
+    std::cout << args[1].toStdString() << ": " << data->readingCount() << " readings, grid "
+              << grid.width << " x " << grid.height << " cells of " << grid.cellSize << " m, "
+              << settings.model << " x " << settings.rule << ", "
+              << (bare ? "RemapController + GridView" : "MainWindow panel slider") << " " << param
+              << " over " << ms.size() << " steps, "
+              << (view->backend() == sg::ui::GridView::Backend::OpenGL ? "OpenGL" : "raster")
+              << " view\n  change -> repainted " << summarise(ms) << "\n  worker re-map alone  "
+              << summarise(remapMs) << "\n  change -> map delivered on the GUI thread "
+              << summarise(delivered) << "\n  GUI thread: the change itself " << summarise(handling)
+              << "\n  GUI thread: map delivered -> repainted " << summarise(drawing) << '\n';
+
+    if (probes > 0) {
+      QElapsedTimer idle;
+      idle.start();
+      report("idle (1 s)", probe(*view, [&] { return idle.elapsed() < 1000; }));
+      int done = 0;
+      quint64 waitingFor = 0;
+      const auto next = [&] {
+        change(done % steps);
+        if (remap->latestGeneration() == waitingFor) change((done + steps / 2) % steps);
+        waitingFor = remap->latestGeneration();
+      };
+      next();
+      const auto chain = QObject::connect(remap, &sg::ui::RemapController::mapped,
+                                          [&](auto, double, quint64 g, bool) {
+                                            if (g != waitingFor) return;
+                                            if (++done < probes) next();
+                                          });
+      report("while re-mapping", probe(*view, [&] { return done < probes; }));
+      QObject::disconnect(chain);
+    }
   } catch (const std::exception& e) {
     std::cerr << "bench_remap_latency: " << e.what() << '\n';
     return 2;
