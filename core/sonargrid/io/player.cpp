@@ -126,15 +126,18 @@ class PlayerParser : text::LineParser {
     return n;
   }
 
-  void needFields(std::string_view iface, std::size_t n, const std::string& layout) const {
+  // `exact`: a count says how many fields follow, so more than that is an error too.
+  void needFields(std::string_view iface, std::size_t n, const std::string& layout,
+                  bool exact) const {
     const std::size_t got = fields_.size() - payload_;
-    if (got >= n) return;
-    fail(std::string(iface), "expected " + std::to_string(n) + " payload fields (" + layout +
-                                 "), found " + std::to_string(got));
+    if (got == n || (got > n && !exact)) return;
+    fail(std::string(iface), "expected " + std::string(exact ? "" : "at least ") +
+                                 std::to_string(n) + " payload fields (" + layout + "), found " +
+                                 std::to_string(got));
   }
 
   void position() {
-    needFields("position2d", 7, "px py pa vx vy va stall");
+    needFields("position2d", 7, "px py pa vx vy va stall", false);
     const double x = finite(payload_, "position2d px", "a number of metres");
     const double y = finite(payload_ + 1, "position2d py", "a number of metres");
     const double a = finite(payload_ + 2, "position2d pa", "an angle in radians");
@@ -157,7 +160,7 @@ class PlayerParser : text::LineParser {
 
   void geometry(std::string_view iface, std::size_t at) {
     const unsigned long n = count(iface);
-    needFields(iface, 1 + 3 * n, "count, then x y yaw of each sonar");
+    needFields(iface, 1 + 3 * n, "count, then x y yaw of each sonar", true);
     std::vector<SonarMount> mounts = poses(iface, at + 1, n);
     setGeometry(std::move(mounts), iface);
   }
@@ -176,7 +179,8 @@ class PlayerParser : text::LineParser {
   void ranges(double time, std::string_view iface, bool withPoses) {
     const unsigned long n = count(iface);
     needFields(iface, 1 + n * (withPoses ? 4 : 1),
-               withPoses ? "count, the ranges, then x y yaw of each sensor" : "count, the ranges");
+               withPoses ? "count, the ranges, then x y yaw of each sensor" : "count, the ranges",
+               true);
     readings_.clear();
     for (std::size_t i = 0; i < n; ++i) {
       const std::string field = std::string(iface) + " r[" + std::to_string(i) + "]";
