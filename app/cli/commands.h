@@ -9,5 +9,6 @@ int runModels(Arguments& args);
 int runMap(Arguments& args);
 int runScore(Arguments& args);
 int runGoodness(Arguments& args);
+int runConvert(Arguments& args);
 
 }  // namespace sg::cli

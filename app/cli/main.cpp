@@ -27,7 +27,13 @@ commands:
   goodness --log FILE [map flags] [--second-log FILE] [--json]
                              map quality without a reference: VSDNS, derivative noise,
                              two-run comparison
+  convert --in FILE --out FILE [--to sglog|carmen] [--json]
+                             rewrite a log as .sglog or CARMEN
   help                       this text
+
+log flags (every command that reads a log):
+  --format auto|sglog|carmen|player|csv   --lenient   --robot PRESET|GEOMETRY_FILE
+  --columns SPEC   --poses FILE           (docs/formats.md)
 
 See docs/cli.md for the full contract.
 )";
@@ -51,6 +57,7 @@ int main(int argc, char** argv) {
     if (command == "map") return sg::cli::runMap(args);
     if (command == "score") return sg::cli::runScore(args);
     if (command == "goodness") return sg::cli::runGoodness(args);
+    if (command == "convert") return sg::cli::runConvert(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';

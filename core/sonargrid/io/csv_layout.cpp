@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "sonargrid/io/text_lines.h"
@@ -39,9 +40,9 @@ void addSonars(CsvLayout& layout, std::string_view item, std::string_view value)
 }
 
 LengthUnit lengthUnit(std::string_view item, std::string_view v) {
-  if (v == "m") return LengthUnit::Metre;
-  if (v == "mm") return LengthUnit::Millimetre;
-  bad(item, "m or mm");
+  const std::optional<LengthUnit> unit = lengthUnitFromName(std::string(v));
+  if (!unit) bad(item, "m, cm or mm");
+  return *unit;
 }
 
 }  // namespace
@@ -128,10 +129,6 @@ CsvLayout parseCsvLayout(std::string_view spec) {
   if (layout.time == 0) bad(spec, "a time column (time=N)");
   if (layout.sonars.empty()) bad(spec, "sonar columns (sonars=FIRST-LAST)");
   return layout;
-}
-
-double metres(double value, LengthUnit unit) {
-  return unit == LengthUnit::Millimetre ? value / 1000.0 : value;
 }
 
 double radians(double value, AngleUnit unit) {

@@ -9,9 +9,10 @@
 #include <string_view>
 #include <vector>
 
+#include "sonargrid/reference/reference_map.h"  // LengthUnit
+
 namespace sg {
 
-enum class LengthUnit { Metre, Millimetre };
 enum class AngleUnit { Radian, Degree, TenthDegree };
 
 struct CsvLayout {
@@ -46,7 +47,6 @@ struct CsvLayout {
 // std::invalid_argument naming the bad item and what was expected.
 CsvLayout parseCsvLayout(std::string_view spec);
 
-double metres(double value, LengthUnit unit);
 double radians(double value, AngleUnit unit);
 
 }  // namespace sg

@@ -69,7 +69,8 @@ class Table : protected text::LineParser {
     const double x = finite(xCol - 1, "x (" + column(xCol) + ")", "a number");
     const double y = finite(yCol - 1, "y (" + column(yCol) + ")", "a number");
     const double t = finite(thetaCol - 1, "theta (" + column(thetaCol) + ")", "an angle");
-    return Pose2D(metres(x, layout_.length), metres(y, layout_.length), radians(t, layout_.angle));
+    return Pose2D(x * metresPerUnit(layout_.length), y * metresPerUnit(layout_.length),
+                  radians(t, layout_.angle));
   }
 
   const CsvLayout& layout_;
@@ -154,7 +155,7 @@ class CsvParser : Table {
       double range = Reading::kNoEcho;
       if (std::find(l.noEcho.begin(), l.noEcho.end(), v) == l.noEcho.end()) {
         if (v < 0.0) fail(field, "expected a range >= 0 or a no-echo value, " + found(raw));
-        range = metres(v, l.range);
+        range = v * metresPerUnit(l.range);
         if (range >= ds_.ring.maxRange) range = Reading::kNoEcho;
       }
       readings_.push_back(Reading{static_cast<std::uint16_t>(i), range, t});
@@ -223,20 +224,18 @@ class GeometryParser : text::LineParser {
   }
 
   double length(std::size_t i, const std::string& field) const {
-    return metres(finite(i, field, "a length"), length_);
+    return finite(i, field, "a length") * metresPerUnit(length_);
   }
 
   void record() {
     if (fields_.empty()) return;
     const std::string_view key = fields_[0];
     if (key == "units") {
-      expectCount(2, "m or mm, then rad, deg or ddeg");
+      expectCount(2, "m, cm or mm, then rad, deg or ddeg");
       if (records_ != 0) fail("units", "expected 'units' before any other record, found it later");
-      if (fields_[1] == "m" || fields_[1] == "mm") {
-        length_ = fields_[1] == "m" ? LengthUnit::Metre : LengthUnit::Millimetre;
-      } else {
-        fail("units", "expected a length unit m or mm, " + found(fields_[1]));
-      }
+      const std::optional<LengthUnit> unit = lengthUnitFromName(std::string(fields_[1]));
+      if (!unit) fail("units", "expected a length unit m, cm or mm, " + found(fields_[1]));
+      length_ = *unit;
       if (fields_[2] == "rad") {
         angle_ = AngleUnit::Radian;
       } else if (fields_[2] == "deg") {

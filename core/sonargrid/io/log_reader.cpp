@@ -53,6 +53,14 @@ LogFormat chooseFormat(std::string_view head, const std::string& name, const Log
   if (options.format != LogFormat::Auto) return options.format;
   const LogFormat detected = detectLogFormat(head);
   if (detected != LogFormat::Auto) return detected;
+  // Content that says nothing (an empty file, a cut header): the name decides, so that the
+  // reader of that format explains what is missing.
+  auto endsWith = [&name](std::string_view suffix) {
+    return name.size() >= suffix.size() &&
+           name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  if (endsWith(".sglog")) return LogFormat::Sglog;
+  if (endsWith(".clf") || endsWith(".carmen")) return LogFormat::Carmen;
   if (options.csv) return LogFormat::Csv;
   throw LogError(name, 0, "format",
                  "expected an sglog header, CARMEN messages, Player writelog lines or CSV rows; "
