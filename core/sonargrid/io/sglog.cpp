@@ -72,44 +72,13 @@ bool validAperture(double a) {
 // ---------------------------------------------------------------------------------------------
 // Reading
 
-// The whitespace-separated fields of one line, up to a trailing comment.
-struct Fields {
-  static constexpr std::size_t kMaxKept = 12;  // longer lines are errors; we only need their count
-  std::array<std::string_view, kMaxKept> at{};
-  std::size_t count = 0;
-
-  std::string_view operator[](std::size_t i) const { return at[i]; }
-};
-
 bool isBlank(char c) {
   return c == ' ' || c == '\t';
 }
 
-void splitFields(std::string_view line, Fields& f) {
-  f.count = 0;
-  const char* p = line.data();
-  const char* end = p + line.size();
-  for (;;) {
-    while (p != end && isBlank(*p)) ++p;
-    if (p == end || *p == '#') return;
-    const char* start = p;
-    while (p != end && !isBlank(*p)) ++p;
-    if (f.count < Fields::kMaxKept) {
-      f.at[f.count] = std::string_view(start, static_cast<std::size_t>(p - start));
-    }
-    ++f.count;
-  }
-}
-
-class Parser {
+class Parser : text::LineParser {
  public:
-  Parser(text::ByteSource& src, const std::string& file, const LogOptions& options,
-         LoadReport& report)
-      : file_(file),
-        hooks_{options.progress, options.cancel},
-        lines_(src, file, &hooks_),
-        lenient_(options.lenient),
-        report_(report) {}
+  using LineParser::LineParser;
 
   Dataset run() {
     readMagic();
@@ -137,11 +106,11 @@ class Parser {
 
   void prepareLine() {
     text::requireText(line_, file_, lines_.lineNumber());
-    splitFields(line_, fields_);
+    text::splitFields(line_, fields_);
   }
 
   void expectCount(std::size_t n, std::string_view what) const {
-    const std::size_t got = fields_.count - 1;
+    const std::size_t got = fields_.size() - 1;
     if (got == n) return;
     std::string message = "expected " + std::to_string(n) + (n == 1 ? " field" : " fields") +
                           " after '" + std::string(fields_[0]) + "'";
@@ -165,13 +134,13 @@ class Parser {
     constexpr std::string_view kBom = "\xEF\xBB\xBF";
     if (line_.substr(0, kBom.size()) == kBom) {
       line_.remove_prefix(kBom.size());
-      splitFields(line_, fields_);
+      text::splitFields(line_, fields_);
     }
-    if (fields_.count == 0 || fields_[0] != kMagic) {
+    if (fields_.size() == 0 || fields_[0] != kMagic) {
       fail("magic", "expected " + expectedLine + " as the first line, " +
                         (line_.empty() ? std::string("found an empty line") : found(line_)));
     }
-    if (fields_.count == 1)
+    if (fields_.size() == 1)
       fail("version", "expected a version number after 'sglog', found nothing");
     unsigned long version = 0;
     if (!parseUnsigned(fields_[1], version)) {
@@ -191,7 +160,7 @@ class Parser {
             file_, 0, "",
             "truncated: the file ends inside the header (expected an 'end_header' line)");
       }
-      if (fields_.count == 0) continue;
+      if (fields_.size() == 0) continue;
       const std::string_view key = fields_[0];
       if (key == kEndHeader) {
         expectCount(0, "");
@@ -390,7 +359,7 @@ class Parser {
     while (lines_.next(line_)) {
       try {
         prepareLine();
-        if (fields_.count != 0 && readBodyRecord()) return;
+        if (fields_.size() != 0 && readBodyRecord()) return;
       } catch (const LogError& e) {
         if (!lenient_) throw;
         report_.skip(e);
@@ -450,11 +419,11 @@ class Parser {
   }
 
   void readScan() {
-    if (fields_.count != 6 && fields_.count != 8) {
+    if (fields_.size() != 6 && fields_.size() != 8) {
       fail("scan",
            "expected 5 fields after 'scan' (time x y theta none) or 7 (time x y theta "
            "true_x true_y true_theta), found " +
-               std::to_string(fields_.count - 1));
+               std::to_string(fields_.size() - 1));
     }
     // Locals, not nested calls: argument order is unspecified and errors must be reported for the
     // leftmost bad field.
@@ -467,7 +436,7 @@ class Parser {
     const double y = finite(3, "y", "a number of metres");
     const double theta = finite(4, "theta", "an angle in radians");
     std::optional<Pose2D> truth;
-    if (fields_.count == 8) {
+    if (fields_.size() == 8) {
       const double tx = finite(5, "true_x", "a number of metres");
       const double ty = finite(6, "true_y", "a number of metres");
       const double ttheta = finite(7, "true_theta", "an angle in radians");
@@ -491,7 +460,7 @@ class Parser {
     while (lines_.next(line_)) {
       try {
         prepareLine();
-        if (fields_.count == 0) continue;
+        if (fields_.size() == 0) continue;
         fail("", "expected nothing but comments and blank lines after 'end' (line " +
                      std::to_string(endLine) + "), " + found(fields_[0]));
       } catch (const LogError& e) {
@@ -501,13 +470,6 @@ class Parser {
     }
   }
 
-  const std::string& file_;
-  text::LoadHooks hooks_;
-  text::LineReader lines_;
-  bool lenient_;
-  LoadReport& report_;
-  std::string_view line_;
-  Fields fields_;
   Dataset ds_;
   std::array<std::size_t, kKeyCount> keyLine_{};  // 0 = not seen yet
   std::vector<std::size_t> sonarLines_;
