@@ -10,6 +10,7 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev  # distance transform, PNG
   nlohmann-json3-dev                        # JSON for the CLI and reference maps
   libbenchmark-dev                          # Google Benchmark (tests/bench)
+  clang libclang-rt-14-dev                  # libFuzzer + sanitizer runtimes (.ci/fuzz.sh)
 )
 
 missing=()

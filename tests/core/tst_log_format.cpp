@@ -11,6 +11,7 @@
 #include "sonargrid/io/csv_layout.h"
 #include "sonargrid/io/csv_log.h"
 #include "sonargrid/io/log_reader.h"
+#include "sonargrid/io/text_lines.h"
 
 Q_DECLARE_METATYPE(sg::LogFormat)
 
@@ -57,6 +58,7 @@ class TstLogFormat : public QObject {
   void lenientStillStopsOnWholeFileErrors();
   void progressReachesTheTotal();
   void cancelStopsTheLoad();
+  void lineReaderGrowsPastASizeHint();
   void garbageNeverCrashes_data();
   void garbageNeverCrashes();
 };
@@ -284,6 +286,30 @@ void TstLogFormat::cancelStopsTheLoad() {
   };
   QVERIFY_THROWS_EXCEPTION(sg::LoadCancelled, sg::parseLog(text, "big.clf", o));
   QCOMPARE(calls, 2);  // the block read after the flag turned true is the last
+}
+
+// A file may grow between the size check and the read: the small buffer sized from the hint grows.
+void TstLogFormat::lineReaderGrowsPastASizeHint() {
+  class ShortHint : public sg::text::MemorySource {
+   public:
+    using MemorySource::MemorySource;
+    std::uint64_t size() const override { return 4; }
+  };
+  const std::string text = "first line\n" + std::string(100000, 'x') + "\nlast";
+  ShortHint source(text);
+  const std::string name = "grow";
+  sg::text::LineReader lines(source, name);
+  std::string_view line;
+  QVERIFY(lines.next(line));
+  QCOMPARE(line, std::string_view("first line"));
+  // 100000 bytes > the 65536-byte line limit: the limit, not the buffer, stops it.
+  QVERIFY_THROWS_EXCEPTION(sg::LogError, lines.next(line));
+  ShortHint shorter(std::string_view(text).substr(0, 60000));
+  sg::text::LineReader again(shorter, name);
+  QVERIFY(again.next(line));
+  QVERIFY(again.next(line));
+  QCOMPARE(line.size(), std::size_t{60000 - 11});
+  QVERIFY(!again.next(line));
 }
 
 void TstLogFormat::garbageNeverCrashes_data() {

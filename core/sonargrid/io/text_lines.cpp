@@ -75,7 +75,12 @@ std::size_t MemorySource::read(char* dst, std::size_t n) {
 // Lines
 
 LineReader::LineReader(ByteSource& src, const std::string& file, const LoadHooks* hooks)
-    : src_(src), file_(file), hooks_(hooks), buf_(kMaxLineBytes + 1 + kChunkBytes) {}
+    : src_(src), file_(file), hooks_(hooks) {
+  // A small input known in advance gets a buffer its size (refill grows it should the input turn
+  // out longer), which keeps parsing many short texts (tests, fuzzing) cheap.
+  const std::uint64_t size = src.size();
+  buf_.resize(size != 0 && size < kFullBytes ? static_cast<std::size_t>(size) + 1 : kFullBytes);
+}
 
 bool LineReader::next(std::string_view& line) {
   std::size_t scanFrom = begin_;
@@ -115,6 +120,7 @@ bool LineReader::next(std::string_view& line) {
 }
 
 void LineReader::refill() {
+  if (end_ == buf_.size()) buf_.resize(kFullBytes);
   const std::size_t got = src_.read(buf_.data() + end_, buf_.size() - end_);
   if (got == 0) {
     eof_ = true;

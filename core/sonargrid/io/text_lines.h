@@ -94,6 +94,7 @@ class LineReader {
 
  private:
   static constexpr std::size_t kChunkBytes = 256 * 1024;
+  static constexpr std::size_t kFullBytes = kMaxLineBytes + 1 + kChunkBytes;
   [[noreturn]] void throwTooLong() const;
   void refill();
 
