@@ -1,4 +1,5 @@
-// libFuzzer target: the Player writelog reader, with and without a robot preset (tests/fuzz/README.md).
+// libFuzzer target: the Player writelog reader, with and without a robot preset
+// (tests/fuzz/README.md).
 #include "fuzz_log.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
