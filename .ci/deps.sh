@@ -15,6 +15,7 @@ packages=(
   libgl-dev                                 # OpenGL headers for the grid view
   libgl1-mesa-dri                           # Mesa software rendering for the GL tests
   xvfb xauth                                # xvfb-run for the GL tests (ctest label gl)
+  clang libclang-rt-14-dev                  # libFuzzer + sanitizer runtimes (.ci/fuzz.sh)
 )
 
 missing=()

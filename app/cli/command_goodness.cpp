@@ -36,9 +36,9 @@ int runGoodness(Arguments& args) {
   const bool json = args.flag("--json");
   args.finish();
 
-  const Dataset first = loadLog(o.log);
+  const Dataset first = loadLog(o.log, o.read);
   std::optional<Dataset> second;
-  if (secondLog) second = loadLog(*secondLog);
+  if (secondLog) second = loadLog(*secondLog, o.read);
   GridSpec grid = first.fittingGrid(o.settings.pose, o.cell);
   if (second) grid = commonGrid(grid, second->fittingGrid(o.settings.pose, o.cell));
 

@@ -10,7 +10,6 @@
 #include "commands.h"
 #include "map_options.h"
 #include "sonargrid/export/map_export.h"
-#include "sonargrid/io/sglog.h"
 
 namespace sg::cli {
 namespace {
@@ -21,6 +20,7 @@ constexpr double kMaxCells = 200e6;
 MapOptions parseMapOptions(Arguments& args) {
   MapOptions o;
   o.log = args.required("--log");
+  o.read = parseLogOptions(args);
   const std::string pose = args.value("--pose").value_or("odom");
   if (pose == "odom")
     o.settings.pose = PoseSource::Odometry;
@@ -67,14 +67,6 @@ MapOptions parseMapOptions(Arguments& args) {
   return o;
 }
 
-Dataset loadLog(const std::string& path) {
-  try {
-    return readSglog(path);
-  } catch (const LogError& e) {
-    throw InputError(e.what());
-  }
-}
-
 BuiltMap buildMap(const Dataset& data, const MapOptions& o, const std::string& logPath,
                   const std::optional<GridSpec>& onGrid, FootprintObserver* observer) {
   if (o.settings.pose == PoseSource::Truth && !data.hasTruth()) {
@@ -114,7 +106,7 @@ int runMap(Arguments& args) {
   if (!png && (legend || scale != 1))
     throw UsageError("--legend and --scale shape the PNG; give --png FILE");
 
-  const Dataset data = loadLog(o.log);
+  const Dataset data = loadLog(o.log, o.read);
   const BuiltMap built = buildMap(data, o, o.log);
 
   if (png) {

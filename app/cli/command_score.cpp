@@ -143,7 +143,7 @@ int runScore(Arguments& args) {
     }
     source = *mapPath;
   } else {
-    const Dataset data = loadLog(mapOptions->log);
+    const Dataset data = loadLog(mapOptions->log, mapOptions->read);
     map = buildMap(data, *mapOptions, mapOptions->log).map;
     source = mapOptions->log + " (" + mapOptions->settings.model + " x " +
              mapOptions->settings.rule + ")";

@@ -11,5 +11,6 @@ int runScore(Arguments& args);
 int runGoodness(Arguments& args);
 int runSimulate(Arguments& args);
 int runReproduce(Arguments& args);
+int runConvert(Arguments& args);
 
 }  // namespace sg::cli

@@ -35,7 +35,13 @@ commands:
       [--progress] [--sets N] [--threads N]
                              rerun a paper's experiment on the bundled datasets: tables
                              (Markdown, CSV) and figures (PNG) in DIR/PAPER
+  convert --in FILE --out FILE [--to sglog|carmen] [--json]
+                             rewrite a log as .sglog or CARMEN
   help                       this text
+
+log flags (every command that reads a log):
+  --format auto|sglog|carmen|player|csv   --lenient   --robot PRESET|GEOMETRY_FILE
+  --columns SPEC   --poses FILE           (docs/formats.md)
 
 See docs/cli.md for the full contract.
 )";
@@ -61,6 +67,7 @@ int main(int argc, char** argv) {
     if (command == "goodness") return sg::cli::runGoodness(args);
     if (command == "simulate") return sg::cli::runSimulate(args);
     if (command == "reproduce") return sg::cli::runReproduce(args);
+    if (command == "convert") return sg::cli::runConvert(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';

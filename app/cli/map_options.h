@@ -1,6 +1,7 @@
 #pragma once
-// The flags every command that builds a map shares (`map` now; `score` and `goodness` later):
-// --log, --pose, --model, --rule, --set, --cell, --until.
+// The flags every command that builds a map shares (`map`, `score`, `goodness`):
+// --log, --pose, --model, --rule, --set, --cell, --until, and the log-reading flags --format,
+// --lenient, --robot, --columns, --poses (log_flags.cpp) that every command reading a log takes.
 
 #include <limits>
 #include <optional>
@@ -8,6 +9,7 @@
 
 #include "arguments.h"
 #include "sonargrid/dataset.h"
+#include "sonargrid/io/log_options.h"
 #include "sonargrid/mapper.h"
 #include "sonargrid/occupancy_map.h"
 
@@ -15,6 +17,7 @@ namespace sg::cli {
 
 struct MapOptions {
   std::string log;
+  LogOptions read;  // how to read --log (and a second log)
   MapperSettings settings;
   double cell = 0.05;
   double until = std::numeric_limits<double>::infinity();
@@ -24,7 +27,13 @@ struct MapOptions {
 // and InputError for an incompatible model/rule pair.
 MapOptions parseMapOptions(Arguments& args);
 
-// Reads the log (InputError naming file, line and field when it is malformed).
+// Consumes --format, --lenient, --robot, --columns and --poses; throws UsageError for bad values
+// and InputError for a malformed geometry file.
+LogOptions parseLogOptions(Arguments& args);
+
+// Reads the log (InputError naming file, line and field when it is malformed). Lines skipped with
+// --lenient are reported on stderr, one line per reason.
+Dataset loadLog(const std::string& path, const LogOptions& options, LoadReport* report = nullptr);
 Dataset loadLog(const std::string& path);
 
 struct BuiltMap {

@@ -8,6 +8,7 @@
 
 #include "sonargrid/dataset.h"
 #include "sonargrid/io/log_error.h"
+#include "sonargrid/io/log_options.h"
 
 namespace sg {
 
@@ -16,6 +17,13 @@ inline constexpr int kSglogVersion = 1;
 // Throws LogError (file, line, field, what was expected) on any malformed or truncated input.
 Dataset readSglog(const std::string& path);
 Dataset parseSglog(std::istream& in, const std::string& displayName);
+
+namespace text {
+class ByteSource;
+}
+// The reader behind readLog (log_reader.h): lenient skipping, progress and cancel.
+Dataset readSglog(text::ByteSource& source, const std::string& displayName,
+                  const LogOptions& options, LoadReport& report);
 
 // Writes atomically (a temporary file renamed over `path`); throws std::runtime_error naming the
 // path when it cannot.

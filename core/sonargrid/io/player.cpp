@@ -1,0 +1,281 @@
+#include "sonargrid/io/player.h"
+
+#include <algorithm>
+#include <limits>
+#include <optional>
+#include <vector>
+
+#include "sonargrid/io/text_lines.h"
+
+namespace sg {
+namespace {
+
+using text::found;
+
+// docs/formats.md ("Player") is the specification of everything below; keep the two in step.
+
+constexpr std::size_t kMaxSonars = 65536;  // Reading::sonar is 16 bits wide
+constexpr std::size_t kHeaderFields = 5;   // time host robot interface index
+
+// Player message types and subtypes (player.h): data 1, request-ack 4.
+constexpr unsigned long kData = 1;
+constexpr unsigned long kAck = 4;
+constexpr unsigned long kSonarRanges = 1;    // PLAYER_SONAR_DATA_RANGES
+constexpr unsigned long kSonarGeom = 2;      // PLAYER_SONAR_DATA_GEOM
+constexpr unsigned long kSonarReqGeom = 1;   // PLAYER_SONAR_REQ_GET_GEOM
+constexpr unsigned long kRangerRange = 1;    // PLAYER_RANGER_DATA_RANGE
+constexpr unsigned long kRangerPose = 2;     // PLAYER_RANGER_DATA_RANGEPOSE
+constexpr unsigned long kPositionState = 1;  // PLAYER_POSITION2D_DATA_STATE
+
+class PlayerParser : text::LineParser {
+ public:
+  using LineParser::LineParser;
+
+  Dataset run(const LogOptions& options) {
+    eachLine([this] { line(); });
+    finish(options);
+    return std::move(ds_);
+  }
+
+ private:
+  void line() {
+    if (fields_.empty()) {
+      versionComment();
+      return;
+    }
+    const std::size_t header = kHeaderFields + (legacy_ ? 0 : 2);
+    if (fields_.size() < header) {
+      fail("", std::string("expected ") +
+                   (legacy_ ? "time host robot interface index (Player 1.x)"
+                            : "time host robot interface index type subtype") +
+                   " before the payload, found " + std::to_string(fields_.size()) + " fields");
+    }
+    const double time = finite(0, "time", "a time in seconds");
+    unsigned long index = 0;
+    if (!text::parseUnsigned(fields_[4], index)) {
+      fail("index", "expected a device index, " + found(fields_[4]));
+    }
+    unsigned long type = kData;
+    unsigned long subtype = 1;
+    if (!legacy_) {
+      if (!text::parseUnsigned(fields_[5], type)) {
+        fail("type", "expected a message type number, " + found(fields_[5]));
+      }
+      if (!text::parseUnsigned(fields_[6], subtype)) {
+        fail("subtype", "expected a message subtype number, " + found(fields_[6]));
+      }
+    }
+    payload_ = header;
+    const std::string_view iface = fields_[3];
+    if (iface == "position2d" || (legacy_ && iface == "position")) {
+      if (type == kData && subtype == kPositionState && sameDevice(positionDevice_)) {
+        position();
+        return;
+      }
+    } else if (iface == "sonar") {
+      if (type == kData && subtype == kSonarRanges && sameDevice(rangeDevice_)) {
+        ranges(time, "sonar", false);
+        return;
+      }
+      if ((type == kData && subtype == kSonarGeom && !legacy_) ||
+          (type == kAck && subtype == kSonarReqGeom && !legacy_)) {
+        geometry("sonar", payload_);
+        return;
+      }
+    } else if (iface == "ranger") {
+      if (type == kData && (subtype == kRangerRange || subtype == kRangerPose) &&
+          sameDevice(rangeDevice_)) {
+        ranges(time, "ranger", !legacy_ && subtype == kRangerPose);
+        return;
+      }
+    }
+    std::string what(iface);
+    if (!legacy_) what += " " + std::to_string(type) + ":" + std::to_string(subtype);
+    report_.ignore(what);
+  }
+
+  // "## Player version 1.6.5": 1.x logs have no type and subtype fields.
+  void versionComment() {
+    constexpr std::string_view kVersion = "## Player version";
+    std::string_view l = line_;
+    if (l.substr(0, kVersion.size()) != kVersion) return;
+    l.remove_prefix(kVersion.size());
+    while (!l.empty() && (l.front() == ' ' || l.front() == '\t')) l.remove_prefix(1);
+    legacy_ = !l.empty() && l.front() == '1' && (l.size() == 1 || l[1] == '.');
+  }
+
+  // The first device of an interface supplies its data; the others are counted as ignored.
+  bool sameDevice(std::string& device) const {
+    std::string key;
+    for (std::size_t i = 1; i < kHeaderFields; ++i) {
+      key += fields_[i];
+      key += ' ';
+    }
+    if (device.empty()) device = key;
+    return device == key;
+  }
+
+  unsigned long count(std::string_view iface) const {
+    const std::string field = std::string(iface) + " count";
+    if (fields_.size() <= payload_) fail(field, "expected a count after the header, found nothing");
+    unsigned long n = 0;
+    if (!text::parseUnsigned(fields_[payload_], n) || n > kMaxSonars) {
+      fail(field,
+           "expected a count 0.." + std::to_string(kMaxSonars) + ", " + found(fields_[payload_]));
+    }
+    return n;
+  }
+
+  // `exact`: a count says how many fields follow, so more than that is an error too.
+  void needFields(std::string_view iface, std::size_t n, const std::string& layout,
+                  bool exact) const {
+    const std::size_t got = fields_.size() - payload_;
+    if (got == n || (got > n && !exact)) return;
+    fail(std::string(iface), "expected " + std::string(exact ? "" : "at least ") +
+                                 std::to_string(n) + " payload fields (" + layout + "), found " +
+                                 std::to_string(got));
+  }
+
+  void position() {
+    needFields("position2d", 7, "px py pa vx vy va stall", false);
+    const double x = finite(payload_, "position2d px", "a number of metres");
+    const double y = finite(payload_ + 1, "position2d py", "a number of metres");
+    const double a = finite(payload_ + 2, "position2d pa", "an angle in radians");
+    pose_ = Pose2D(x, y, a);
+  }
+
+  // `count (x y yaw)...` starting at fields_[first].
+  std::vector<SonarMount> poses(std::string_view iface, std::size_t first, unsigned long n) const {
+    std::vector<SonarMount> out(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string index = "[" + std::to_string(i) + "]";
+      const std::string prefix = std::string(iface) + " ";
+      const double x = finite(first + 3 * i, prefix + "x" + index, "a number of metres");
+      const double y = finite(first + 3 * i + 1, prefix + "y" + index, "a number of metres");
+      const double yaw = finite(first + 3 * i + 2, prefix + "yaw" + index, "an angle in radians");
+      out[i] = SonarMount{Pose2D(x, y, yaw)};
+    }
+    return out;
+  }
+
+  void geometry(std::string_view iface, std::size_t at) {
+    const unsigned long n = count(iface);
+    needFields(iface, 1 + 3 * n, "count, then x y yaw of each sonar", true);
+    std::vector<SonarMount> mounts = poses(iface, at + 1, n);
+    setGeometry(std::move(mounts), iface);
+  }
+
+  void setGeometry(std::vector<SonarMount> mounts, std::string_view iface) {
+    if (geometryLine_ == 0) {
+      geometry_ = std::move(mounts);
+      geometryLine_ = lineNumber();
+    } else if (mounts != geometry_) {
+      fail(std::string(iface) + " geometry",
+           "expected the geometry of line " + std::to_string(geometryLine_) +
+               " (the ring cannot change within a log), found a different one");
+    }
+  }
+
+  void ranges(double time, std::string_view iface, bool withPoses) {
+    const unsigned long n = count(iface);
+    needFields(iface, 1 + n * (withPoses ? 4 : 1),
+               withPoses ? "count, the ranges, then x y yaw of each sensor" : "count, the ranges",
+               true);
+    readings_.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string field = std::string(iface) + " r[" + std::to_string(i) + "]";
+      const double r = finite(payload_ + 1 + i, field, "a range in metres >= 0");
+      if (r < 0.0)
+        fail(field, "expected a range in metres >= 0, " + found(fields_[payload_ + 1 + i]));
+      readings_.push_back(Reading{static_cast<std::uint16_t>(i), r, time});
+    }
+    if (withPoses) setGeometry(poses(iface, payload_ + 1 + n, n), iface);
+    if (time < lastTime_) {
+      fail("time", "expected a time >= " + text::number(lastTime_) +
+                       " (the previous scan's; scans are in time order), " + found(fields_[0]));
+    }
+    if (!pose_) {
+      // Devices start at slightly different times; readings before the first pose have no place.
+      report_.ignore(std::string(iface) + " data before the first position2d");
+      return;
+    }
+    lastTime_ = time;
+    Scan& scan = ds_.scans.emplace_back();
+    scan.time = time;
+    scan.odometry = *pose_;
+    scan.readings = readings_;
+    scanLines_.push_back(lineNumber());
+    maxCount_ = std::max<std::size_t>(maxCount_, n);
+  }
+
+  void finish(const LogOptions& options) {
+    if (geometryLine_ != 0) {
+      if (options.ring) ds_.ring = *options.ring;  // its aperture and ranges
+      ds_.ring.robot = "custom";
+      ds_.ring.sonars = geometry_;
+    } else if (options.ring) {
+      ds_.ring = *options.ring;
+    } else {
+      throw LogError(file_, 0, "geometry",
+                     "expected sonar geometry messages or a robot preset (--robot), found neither");
+    }
+    if (rangeDevice_.empty()) {
+      throw LogError(file_, 0, "sonar", "expected sonar or ranger data messages, found none");
+    }
+    const std::size_t size = ds_.ring.sonars.size();
+    if (maxCount_ > size) dropScansBeyondRing(size);
+    const double maxRange = ds_.ring.maxRange;
+    for (Scan& s : ds_.scans) {
+      for (Reading& r : s.readings) {
+        if (r.range >= maxRange) r.range = Reading::kNoEcho;
+      }
+    }
+    ds_.name = "Player log";
+  }
+
+  // Scans with more ranges than the ring has sonars: the first is an error, or with lenient
+  // loading each is skipped.
+  void dropScansBeyondRing(std::size_t size) {
+    const std::string where = geometryLine_ != 0
+                                  ? "the geometry of line " + std::to_string(geometryLine_)
+                                  : std::string("the robot preset");
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < ds_.scans.size(); ++i) {
+      const std::size_t n = ds_.scans[i].readings.size();
+      if (n > size) {
+        const LogError e(file_, scanLines_[i], "sonar count",
+                         "expected at most " + std::to_string(size) + " ranges (the sonars of " +
+                             where + "), found " + std::to_string(n));
+        if (!lenient_) throw e;
+        report_.skip(e);
+        continue;
+      }
+      if (kept != i) ds_.scans[kept] = std::move(ds_.scans[i]);
+      ++kept;
+    }
+    ds_.scans.resize(kept);
+  }
+
+  Dataset ds_;
+  bool legacy_ = false;  // Player 1.x
+  std::size_t payload_ = 0;
+  std::string positionDevice_;
+  std::string rangeDevice_;
+  std::optional<Pose2D> pose_;
+  std::vector<SonarMount> geometry_;
+  std::size_t geometryLine_ = 0;
+  std::vector<Reading> readings_;
+  std::vector<std::size_t> scanLines_;
+  std::size_t maxCount_ = 0;
+  double lastTime_ = -std::numeric_limits<double>::infinity();
+};
+
+}  // namespace
+
+Dataset readPlayer(text::ByteSource& source, const std::string& displayName,
+                   const LogOptions& options, LoadReport& report) {
+  report.format = LogFormat::Player;
+  return PlayerParser(source, displayName, options, report).run(options);
+}
+
+}  // namespace sg

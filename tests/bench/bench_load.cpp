@@ -1,0 +1,159 @@
+// Large-log timing (issue 6, "Large logs"): writes a log of one million readings (62 500 scans of a
+// 16-sonar Pioneer ring driving loops in a 10 m x 8 m room) as .sglog and as CARMEN, then, each in
+// a fresh child process so that nothing else inflates its memory, loads it through readLog and maps
+// it with the engine. Reports load time, bytes per reading in memory (RSS growth and the Dataset's
+// own arithmetic), peak RSS (VmHWM) and mapping time.
+//
+//   bench_load [READINGS]        (default 1000000; the files go to $TMPDIR and are removed)
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <numbers>
+#include <string>
+
+#include "sonargrid/io/carmen.h"
+#include "sonargrid/io/log_reader.h"
+#include "sonargrid/io/sglog.h"
+#include "sonargrid/mapper.h"
+
+namespace {
+
+// A /proc/self/status value in kB ("VmRSS", "VmHWM").
+long statusKb(const char* key) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  const std::string prefix = std::string(key) + ":";
+  while (std::getline(in, line)) {
+    if (line.rfind(prefix, 0) == 0) return std::strtol(line.c_str() + prefix.size(), nullptr, 10);
+  }
+  return -1;
+}
+
+// Distance from p along heading a to the walls of the room [0, 10] x [0, 8].
+double toWall(const sg::Pose2D& p) {
+  const double c = std::cos(p.heading), s = std::sin(p.heading);
+  double t = 1e9;
+  if (c > 1e-9) t = std::min(t, (10.0 - p.x()) / c);
+  if (c < -1e-9) t = std::min(t, -p.x() / c);
+  if (s > 1e-9) t = std::min(t, (8.0 - p.y()) / s);
+  if (s < -1e-9) t = std::min(t, -p.y() / s);
+  return t;
+}
+
+sg::Dataset makeLog(std::size_t readings) {
+  sg::Dataset d;
+  d.name = "bench_load";
+  d.ring = sg::SonarRing::pioneer3dx();
+  const std::size_t sonars = d.ring.size();
+  const std::size_t scans = readings / sonars;
+  d.scans.reserve(scans);
+  for (std::size_t k = 0; k < scans; ++k) {
+    const double t = 0.1 * static_cast<double>(k);
+    const double a = 2.0 * std::numbers::pi * static_cast<double>(k % 600) / 600.0;
+    sg::Scan& s = d.scans.emplace_back();
+    s.time = t;
+    s.odometry = sg::Pose2D(5.0 + 3.0 * std::cos(a), 4.0 + 2.5 * std::sin(a),
+                            sg::wrapAngle(a + std::numbers::pi / 2));
+    s.truth = s.odometry;
+    s.readings.reserve(sonars);
+    for (std::size_t i = 0; i < sonars; ++i) {
+      const double r = toWall(s.odometry.compose(d.ring.sonars[i].pose));
+      s.readings.push_back(sg::Reading{static_cast<std::uint16_t>(i),
+                                       r < d.ring.maxRange ? r : sg::Reading::kNoEcho, t});
+    }
+  }
+  return d;
+}
+
+// The Dataset's heap and inline bytes, from its vectors' capacities.
+std::size_t datasetBytes(const sg::Dataset& d) {
+  std::size_t bytes = sizeof(sg::Dataset) + d.scans.capacity() * sizeof(sg::Scan);
+  for (const sg::Scan& s : d.scans) bytes += s.readings.capacity() * sizeof(sg::Reading);
+  return bytes;
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void loadAndMap(const std::string& path, const char* label) {
+  const long rssBefore = statusKb("VmRSS");
+  int progressCalls = 0;
+  sg::LogOptions options;
+  options.progress = [&](std::uint64_t, std::uint64_t) { ++progressCalls; };
+  const auto t0 = std::chrono::steady_clock::now();
+  sg::LoadReport report;
+  const sg::Dataset d = sg::readLog(path, options, &report);
+  const double loadMs = msSince(t0);
+  const long rssAfter = statusKb("VmRSS");
+  const long hwm = statusKb("VmHWM");
+  const auto n = static_cast<double>(d.readingCount());
+
+  sg::MapperSettings settings;
+  settings.model = "himm";
+  settings.rule = "himm";
+  settings.parameters = sg::defaultParameters(settings.model, settings.rule);
+  const sg::GridSpec grid = d.fittingGrid(sg::PoseSource::Odometry, 0.05);
+  sg::Mapper mapper(d.ring, grid, settings);
+  const auto t1 = std::chrono::steady_clock::now();
+  mapper.mapDataset(d);
+  const double mapMs = msSince(t1);
+
+  std::printf(
+      "%-7s %9.0f readings  file %6.1f MB  load %7.1f ms (%d progress calls)  "
+      "RSS +%6.1f MB = %5.1f B/reading  Dataset %5.1f B/reading  peak RSS %6.1f MB  "
+      "map himm x himm %7.1f ms (%zu x %zu cells)\n",
+      label, n, static_cast<double>(std::filesystem::file_size(path)) / 1e6, loadMs, progressCalls,
+      static_cast<double>(rssAfter - rssBefore) / 1024.0,
+      static_cast<double>(rssAfter - rssBefore) * 1024.0 / n,
+      static_cast<double>(datasetBytes(d)) / n, static_cast<double>(hwm) / 1024.0, mapMs,
+      static_cast<std::size_t>(grid.width), static_cast<std::size_t>(grid.height));
+  std::fflush(stdout);
+}
+
+// Runs `body` in a child process and waits for it.
+template <class Body>
+bool inChild(Body body) {
+  const pid_t pid = fork();
+  if (pid < 0) return false;
+  if (pid == 0) {
+    try {
+      body();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "bench_load: %s\n", e.what());
+      _exit(1);
+    }
+    _exit(0);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::size_t readings = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 1000000;
+  const std::filesystem::path dir = std::filesystem::temp_directory_path();
+  const std::string stem = (dir / ("bench_load_" + std::to_string(getpid()))).string();
+  const std::string sglog = stem + ".sglog";
+  const std::string carmen = stem + ".clf";
+  bool ok = inChild([&] {
+    const sg::Dataset d = makeLog(readings);
+    sg::writeSglog(d, sglog);
+    sg::writeCarmen(d, carmen);
+  });
+  ok = ok && inChild([&] { loadAndMap(sglog, "sglog"); });
+  ok = ok && inChild([&] { loadAndMap(carmen, "carmen"); });
+  std::filesystem::remove(sglog);
+  std::filesystem::remove(carmen);
+  return ok ? 0 : 1;
+}

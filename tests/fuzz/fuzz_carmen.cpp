@@ -1,0 +1,9 @@
+// libFuzzer target: the carmen reader (tests/fuzz/README.md).
+#include "fuzz_log.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  sg::LogOptions o;
+  o.format = sg::LogFormat::Carmen;
+  fuzz::readBothWays(fuzz::view(data, size), o);
+  return 0;
+}
