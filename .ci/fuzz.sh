@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-30}"
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-  -DSONARGRID_BUILD_FUZZERS=ON -DSONARGRID_BUILD_TESTS=OFF -DSONARGRID_BUILD_BENCHMARKS=OFF
+  -DSONARGRID_BUILD_FUZZERS=ON -DSONARGRID_BUILD_TESTS=OFF -DSONARGRID_BUILD_BENCHMARKS=OFF -DSONARGRID_BUILD_GUI=OFF
 cmake --build build-fuzz -j "$(nproc)" --target fuzzers
 mkdir -p build-fuzz/findings
 for target in build-fuzz/tests/fuzz/fuzz_*; do
