@@ -66,12 +66,17 @@ class NormalTable {
     cdf = cdf_[k] + w * (cdf_[k + 1] - cdf_[k]);
   }
   void operator()(lanes::Floats z, lanes::Floats& pdf, lanes::Floats& cdf) const {
-    const lanes::Floats t =
-        (lanes::clamp(z, lanes::Floats{} - float(kZMax), lanes::Floats{} + float(kZMax)) +
-         float(kZMax)) *
+    // z · kScale is exact (a power of two), and so is its distance w from the sample below it: in
+    // float, (z + kZMax) · kScale would round w to 2.4e-4 of an interval, and λ multiplies φ by
+    // 1/(d F), some 500.
+    const lanes::Floats zs =
+        lanes::clamp(z, lanes::Floats{} - float(kZMax), lanes::Floats{} + float(kZMax)) *
         float(kScale);
-    const lanes::Ints k = __builtin_convertvector(t, lanes::Ints);
-    const lanes::Floats w = t - __builtin_convertvector(k, lanes::Floats);
+    lanes::Floats below = __builtin_convertvector(__builtin_convertvector(zs, lanes::Ints),
+                                                  lanes::Floats);  // towards zero
+    below = below > zs ? below - 1.0f : below;                     // floor
+    const lanes::Ints k = __builtin_convertvector(below, lanes::Ints) + kIntervals / 2;
+    const lanes::Floats w = zs - below;
     // One row {φ, Δφ, Φ, ΔΦ} per lane, transposed into four vectors.
     lanes::Floats p0 = lanes::load(lanes_[static_cast<std::size_t>(k[0])].data());
     lanes::Floats p1 = lanes::load(lanes_[static_cast<std::size_t>(k[1])].data());
