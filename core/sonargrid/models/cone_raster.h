@@ -102,9 +102,19 @@ void forEachConeRow(const Pose2D& sensor, double reach, double halfAngle, const 
   // the float tables' error, so they hold every cell the per-cell test below accepts.
   constexpr double kSlack = 1e-3;
 
+  // The rows the cone spans: its extent in y is that of the apex, the arc's two ends and, where
+  // the arc passes straight up or down, its top or bottom (a row or more of margin each side).
+  auto covers = [h, halfAngle](double direction) {
+    const double raw = direction - h;
+    return std::abs(raw + detail::turn(raw)) <= halfAngle;
+  };
+  constexpr double kHalfPi = std::numbers::pi / 2.0;
+  const double top = covers(kHalfPi) ? R : std::max({0.0, R * d1y, R * d2y});
+  const double bottom = covers(-kHalfPi) ? -R : std::min({0.0, R * d1y, R * d2y});
   const int r = tables.radius();
-  const int dy0 = std::max({-r, detail::floorToInt(ay - 0.5 - R) - 1, -iv});
-  const int dy1 = std::min({r, detail::ceilToInt(ay - 0.5 + R) + 1, grid.height - 1 - iv});
+  const int dy0 = std::max({-r, detail::floorToInt(ay - 0.5 + bottom - kSlack) - 1, -iv});
+  const int dy1 =
+      std::min({r, detail::ceilToInt(ay - 0.5 + top + kSlack) + 1, grid.height - 1 - iv});
   // Per thread, so workers never share it; row must not call forEachConeRow itself.
   thread_local std::vector<ConeSpan> spans;
   spans.clear();
