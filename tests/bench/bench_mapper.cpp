@@ -33,18 +33,8 @@ void remap(benchmark::State& state, const sg::Dataset& d, const std::string& mod
     mapper.mapDataset(d);
     benchmark::DoNotOptimize(mapper.readingsIntegrated());
   }
-  // Cells written per reading, outside the timed loop: what the time is spent on.
-  struct Counter final : sg::FootprintObserver {
-    std::size_t cells = 0;
-    void reset(std::size_t) override { cells = 0; }
-    void observe(const sg::Footprint& f) override { cells += f.cells.size(); }
-  } counter;
-  mapper.setObserver(&counter);
-  mapper.mapDataset(d);
-  mapper.setObserver(nullptr);
   state.counters["readings"] = static_cast<double>(d.readingCount());
-  state.counters["cells/reading"] =
-      static_cast<double>(counter.cells) / static_cast<double>(d.readingCount());
+  state.counters["cells/reading"] = bench::cellsPerReading(mapper, d);
 }
 
 int registerAll() {

@@ -15,6 +15,7 @@
 
 #include "sonargrid/dataset.h"
 #include "sonargrid/grid_spec.h"
+#include "sonargrid/mapper.h"
 #include "sonargrid/sim/ray_sonar.h"
 
 namespace bench {
@@ -79,6 +80,19 @@ inline sg::Dataset stressWorkload(int readings) {
     d.scans.push_back(std::move(scan));
   }
   return d;
+}
+
+// Cells written per reading over one batch re-map (not timed): what the time is spent on.
+inline double cellsPerReading(sg::Mapper& mapper, const sg::Dataset& d) {
+  struct Counter final : sg::FootprintObserver {
+    std::size_t cells = 0;
+    void reset(std::size_t) override { cells = 0; }
+    void observe(const sg::Footprint& f) override { cells += f.cells.size(); }
+  } counter;
+  mapper.setObserver(&counter);
+  mapper.mapDataset(d);
+  mapper.setObserver(nullptr);
+  return static_cast<double>(counter.cells) / static_cast<double>(d.readingCount());
 }
 
 }  // namespace bench
