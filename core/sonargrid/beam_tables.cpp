@@ -12,7 +12,8 @@ BeamTables::BeamTables(double cellSize, int radiusCells, int subdivisions)
       radius_(radiusCells),
       subdivisions_(subdivisions),
       tableSize_(static_cast<std::size_t>(side()) * static_cast<std::size_t>(side())) {
-  entries_.resize(tableSize_ * static_cast<std::size_t>(subdivisions_ * subdivisions_));
+  // kPadding entries past the last table, so that a reader may load a few entries past a row.
+  entries_.resize(tableSize_ * static_cast<std::size_t>(subdivisions_ * subdivisions_) + kPadding);
   for (int qy = 0; qy < subdivisions_; ++qy) {
     for (int qx = 0; qx < subdivisions_; ++qx) {
       // Sensor at the centre of sub-cell (qx, qy) of cell (0, 0), in cell units.

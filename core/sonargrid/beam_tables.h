@@ -18,6 +18,8 @@ class BeamTables {
   };
 
   static constexpr int kDefaultSubdivisions = 4;
+  // Entries past the end of any row that may be read (and ignored): lanes load whole groups.
+  static constexpr int kPadding = 3;
 
   BeamTables(double cellSize, int radiusCells, int subdivisions = kDefaultSubdivisions);
 

@@ -75,7 +75,17 @@ Footprint Mapper::footprintOf(const Pose2D& robot, const Reading& reading) const
 void Mapper::applyFootprint(const Footprint& footprint) {
   rule_->apply(footprint);
   if (observer_) observer_->observe(footprint);
-  for (const CellEvidence& c : footprint.cells) observed_[c.cell] = 1;
+  // Four at a time: the loop is a load and a store per cell, and its own overhead was a third.
+  const CellEvidence* c = footprint.cells.data();
+  const CellEvidence* const end = c + footprint.cells.size();
+  std::uint8_t* const observed = observed_.data();
+  for (; end - c >= 4; c += 4) {
+    observed[c[0].cell] = 1;
+    observed[c[1].cell] = 1;
+    observed[c[2].cell] = 1;
+    observed[c[3].cell] = 1;
+  }
+  for (; c != end; ++c) observed[c->cell] = 1;
   ++readings_;
 }
 

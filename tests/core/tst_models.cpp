@@ -4,6 +4,7 @@
 #include <QtTest>
 #include <cmath>
 
+#include "sonargrid/models/cone_raster.h"
 #include "sonargrid/models/sensor_model.h"
 
 using namespace sg;
@@ -36,6 +37,7 @@ class TstModels : public QObject {
   void konolige();
   void himmAxis();
   void evidenceAndProbabilityAgree();
+  void footprintMatchesEvaluate();
   void declarationsAreComplete();
 };
 
@@ -239,6 +241,58 @@ void TstModels::evidenceAndProbabilityAgree() {
         }
       }
     }
+  }
+}
+
+void TstModels::footprintMatchesEvaluate() {
+  // A cone model's footprint is its evaluate() at each cell's table distance and angle, computed
+  // in single precision a row at a time (cone_model.h): the same cells, in the same order, with the
+  // same values to within float rounding. 1e-5 bounds it: the angle off the axis is kept to ~1e-8
+  // rad (cone_model.h) and the steepest angular slope is below 10 per radian (HPF at ω = 25°);
+  // values near 1 round to 6e-8, and Konolige's λ multiplies φ by 1/(d F) ≤ 500, so φ's float
+  // rounding (3e-8) moves λ by 1e-5 and its values, (λ ∓ 1)/(λ + 1), by less.
+  GridSpec grid;
+  grid.cellSize = 0.05;
+  grid.width = 240;
+  grid.height = 200;
+  for (const std::string name : {"hpf", "konolige", "murphy", "parameterized"}) {
+    auto m = model(name.c_str(), {{"no_echo", 1.0}});
+    const double maxRange = 5.0;
+    const auto tables = BeamTables::shared(grid.cellSize, m->reach(maxRange));
+    std::size_t compared = 0;
+    for (const double heading : {0.0, 0.7, 1.5707963, 2.9, 3.1415926, -3.1415926, -2.2, -0.4}) {
+      for (const double range : {0.7, 2.03, 3.41, kNoEcho}) {
+        Beam beam;
+        beam.sensor = Pose2D(6.013 + 0.3 * heading, 5.031 - 0.1 * heading, heading);
+        beam.range = range;
+        beam.maxRange = maxRange;
+        Footprint fp;
+        m->footprint(beam, grid, *tables, fp);
+        // Every cell the widest cone of this model could touch (half-angles are at most 45°).
+        std::vector<CellEvidence> want;
+        forEachConeCell(beam.sensor, m->reach(maxRange), degToRad(45.0), grid, *tables,
+                        [&](std::uint32_t cell, double delta, double theta) {
+                          const ModelValue v = m->evaluate(delta, theta, range, maxRange);
+                          if (v.region != BeamRegion::Outside)
+                            want.emplace_back(cell, v.empty, v.occupied, v.probability);
+                        });
+        const QByteArray where = QByteArray::fromStdString(name) + " heading " +
+                                 QByteArray::number(heading) + " range " +
+                                 QByteArray::number(range);
+        QVERIFY2(fp.cells.size() == want.size(), where);
+        for (std::size_t i = 0; i < want.size(); ++i) {
+          const CellEvidence& a = fp.cells[i];
+          const CellEvidence& b = want[i];
+          QVERIFY2(a.cell == b.cell, where);
+          QVERIFY2(std::abs(a.empty - b.empty) <= 1e-5 &&
+                       std::abs(a.occupied - b.occupied) <= 1e-5 &&
+                       std::abs(a.probability - b.probability) <= 1e-5,
+                   where + " cell " + QByteArray::number(a.cell));
+        }
+        compared += want.size();
+      }
+    }
+    QVERIFY(compared > 10000);
   }
 }
 

@@ -1,50 +1,155 @@
 #pragma once
-// The shape every cone model shares: a per-reading `Prepared` beam (constants hoisted out of the
-// cell loop) whose `at(delta, theta)` is the model. evaluate() and footprint() both go through it,
-// so what the beam-model view shows is exactly what the mapper writes.
+// The shape every cone model shares. A model's per-reading constants are a `Shape<S>` (S = double
+// or float) with one formula,
+//   template <class T> ConeValue<T> value(T delta, T absTheta) const,
+// for a point already known to be within the reach and the half-angle. T = double serves
+// evaluate() (the beam view); T = four float lanes serve footprint(), which evaluates the cone a
+// grid row at a time. Both are the same formula, so what the beam view shows is what the mapper
+// writes, to single precision (footprints are stored in floats anyway; footprint.h).
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
 
 #include "sonargrid/models/cone_raster.h"
+#include "sonargrid/models/lanes.h"
 #include "sonargrid/models/sensor_model.h"
 
 namespace sg {
 
-// Prepared must provide: bool active; double reach; double halfAngle; ModelValue at(double, double)
-// for any point, and inside(double, double) for points the rasteriser already placed within the
-// reach and the half-angle (the same value without those two tests).
-template <class Prepared>
-void coneFootprint(const Prepared& pb, const Beam& beam, const GridSpec& grid,
+// A model's value at points inside the cone: which region (bools, or lane masks) and the three
+// values a Footprint cell carries. A point in neither region is left alone by the reading.
+template <class T>
+struct ConeValue {
+  using Mask = decltype(T{} < T{});
+  Mask occupied;  // Region I
+  Mask empty;     // Region II (only where not occupied)
+  T pE, pO, p;
+};
+
+// One reading of a cone model: whether it writes anything, how far and how wide, and its shape.
+template <class Shape>
+struct ConeBeam {
+  bool active = false;
+  double reach = 0.0;
+  double halfAngle = 0.0;
+  Shape shape;
+};
+
+// A threshold for comparisons with a float distance or angle d: the float that leaves `d >= x`
+// (roundUp) or `d <= x` (roundDown) the same test as in double, so footprints and evaluate() agree
+// on every region boundary. Identity for double.
+template <class S>
+S roundUp(double x) {
+  if constexpr (std::is_same_v<S, float>) {
+    float f = static_cast<float>(x);
+    if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    return f;
+  } else {
+    return x;
+  }
+}
+template <class S>
+S roundDown(double x) {
+  if constexpr (std::is_same_v<S, float>) {
+    float f = static_cast<float>(x);
+    if (static_cast<double>(f) > x) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+    return f;
+  } else {
+    return x;
+  }
+}
+
+// Appends the cells of one row, `row.count` of them, to dst; returns the new end. dst has room
+// for lanes::kWidth − 1 entries past the row (written, then overwritten or cut off).
+template <class Shape>
+CellEvidence* coneRow(const Shape& shape, const ConeRow& row, CellEvidence* dst) {
+  using lanes::Floats;
+  using Cells = std::uint32_t __attribute__((vector_size(16)));
+  constexpr int W = lanes::kWidth;
+  // bearing − heading in two steps, hi then lo: the first is exact (Sterbenz) near the axis, so
+  // the angle off the axis keeps near double accuracy.
+  const float hHi = static_cast<float>(row.heading);
+  const float hLo = static_cast<float>(row.heading - static_cast<double>(hHi));
+  static_assert(BeamTables::kPadding >= W - 1);
+  const lanes::Ints lane = {0, 1, 2, 3};
+  Cells cells = row.cell + Cells{0, 1, 2, 3};
+  for (int k = 0; k < row.count; k += W, cells += W) {
+    // The last group may read up to W − 1 entries past the row (the tables are padded for it).
+    const BeamTables::Entry* e = row.entries + k;
+    const Floats lo = lanes::load(&e[0].distance), hi = lanes::load(&e[2].distance);
+    const Floats delta = __builtin_shufflevector(lo, hi, 0, 2, 4, 6);
+    const Floats bearing = __builtin_shufflevector(lo, hi, 1, 3, 5, 7);
+    const ConeValue<Floats> v = shape.value(delta, lanes::abs((bearing - hHi) - hLo));
+    // Four CellEvidence {cell, empty, occupied, probability}: a 4 × 4 transpose.
+    Floats c0 = reinterpret_cast<Floats>(cells);
+    Floats c1 = v.pE, c2 = v.pO, c3 = v.p;
+    lanes::transpose(c0, c1, c2, c3);
+    static_assert(sizeof(CellEvidence) == sizeof(Floats));
+    std::memcpy(static_cast<void*>(dst + 0), &c0, sizeof c0);
+    std::memcpy(static_cast<void*>(dst + 1), &c1, sizeof c1);
+    std::memcpy(static_cast<void*>(dst + 2), &c2, sizeof c2);
+    std::memcpy(static_cast<void*>(dst + 3), &c3, sizeof c3);
+    // Lanes past the row's end count as kept: they are cut off below.
+    const int n = std::min(W, row.count - k);
+    const lanes::Ints keep = v.occupied | v.empty | (lane >= n);
+    if (lanes::all(keep)) {
+      dst += n;
+    } else {  // a cell the reading says nothing about: rare, at the edge of a region
+      CellEvidence* kept = dst;
+      for (int j = 0; j < n; ++j) {
+        if (keep[j]) *kept++ = dst[j];
+      }
+      dst = kept;
+    }
+  }
+  return dst;
+}
+
+// The footprint of one reading: the cone's rows, evaluated in lanes.
+template <class Shape>
+void coneFootprint(const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid,
                    const BeamTables& tables, Footprint& out) {
   if (!pb.active) return;
   const std::size_t start = out.cells.size();
   CellEvidence* dst = nullptr;
-  forEachConeCell(
+  forEachConeRow(
       beam.sensor, pb.reach, pb.halfAngle, grid, tables,
       [&](std::size_t bound) {
-        out.cells.resize(start +
-                         bound);  // leaves the new entries unwritten (UninitialisedAllocator)
+        // Leaves the new entries unwritten (UninitialisedAllocator); the last lanes of a row may
+        // write up to kWidth − 1 entries past its end.
+        out.cells.resize(start + bound + lanes::kWidth - 1);
         dst = out.cells.data() + start;
       },
-      [&](std::uint32_t cell, double delta, double theta) {
-        const ModelValue v = pb.inside(delta, theta);
-        if (v.region != BeamRegion::Outside)
-          *dst++ = CellEvidence{cell, v.empty, v.occupied, v.probability};
-      });
+      [&](const ConeRow& row) { dst = coneRow(pb.shape, row, dst); });
   out.cells.resize(dst ? static_cast<std::size_t>(dst - out.cells.data()) : start);
 }
 
+// The scalar value, as evaluate() gives it.
+template <class Shape>
+ModelValue coneValueAt(const ConeBeam<Shape>& pb, double delta, double theta) {
+  if (!pb.active || std::abs(theta) > pb.halfAngle || delta > pb.reach) return {};
+  const ConeValue<double> v = pb.shape.value(delta, std::abs(theta));
+  if (v.occupied) return ModelValue{BeamRegion::Occupied, v.pE, v.pO, v.p};
+  if (v.empty) return ModelValue{BeamRegion::Empty, v.pE, v.pO, v.p};
+  return {};
+}
+
 // What every cone model shares: its declaration is staticInfo(), and evaluate() and footprint() are
-// its per-reading prepare(range, maxRange) followed by at() or the rasteriser. A model supplies
-// staticInfo(), configure(), reach() and prepare().
+// its per-reading prepare<S>(range, maxRange) followed by the formula at one point or over the
+// rasterised cone. A model supplies staticInfo(), configure(), reach() and prepare().
 template <class Derived>
 class ConeModel : public SensorModel {
  public:
   const ModelInfo& info() const final { return Derived::staticInfo(); }
   ModelValue evaluate(double delta, double theta, double range, double maxRange) const final {
-    return self().prepare(range, maxRange).at(delta, theta);
+    return coneValueAt(self().template prepare<double>(range, maxRange), delta, theta);
   }
   void footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
                  Footprint& out) const final {
-    coneFootprint(self().prepare(beam.range, beam.maxRange), beam, grid, tables, out);
+    coneFootprint(self().template prepare<float>(beam.range, beam.maxRange), beam, grid, tables,
+                  out);
   }
 
  private:

@@ -1,16 +1,14 @@
 #pragma once
-// Visits the cells whose centres lie in a sonar cone, using BeamTables for distance and bearing.
-// Shared by every cone-shaped model; `Fn` is inlined per model, so the per-cell cost is a table
-// load, two compares and the model's own arithmetic. Each row is walked only over the span where
-// the horizontal line through its cell centres meets the cone (disk ∩ wedge), so few cells are
-// looked at and rejected.
+// Finds the cells whose centres lie in a sonar cone, using BeamTables for distance and bearing,
+// as one run of consecutive cells per grid row. Each row is looked at only over the span where the
+// horizontal line through its cell centres meets the cone (disk ∩ wedge), and only the cells at
+// the span's two ends are tested one by one: the models evaluate whole rows in vector lanes.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <numbers>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -32,6 +30,28 @@ inline void clip(double a, double b, double& lo, double& hi) {
     hi = -std::numeric_limits<double>::infinity();
 }
 
+// floor and ceil to int for |x| < 2³¹ (std::floor is a library call on baseline x86-64).
+inline int floorToInt(double x) {
+  const int i = static_cast<int>(x);
+  return i - (static_cast<double>(i) > x ? 1 : 0);
+}
+inline int ceilToInt(double x) {
+  const int i = static_cast<int>(x);
+  return i + (static_cast<double>(i) < x ? 1 : 0);
+}
+
+// The whole turn that brings `raw` = bearing − heading into [-π, π], both being in [-π, π].
+inline double turn(double raw) {
+  constexpr double kTwoPi = 2.0 * std::numbers::pi;
+  return raw > std::numbers::pi ? -kTwoPi : raw < -std::numbers::pi ? kTwoPi : 0.0;
+}
+
+// A cell's angle off the axis, for a heading in [-π, π).
+inline double offAxis(float bearing, double heading) {
+  const double raw = static_cast<double>(bearing) - heading;
+  return raw + turn(raw);
+}
+
 }  // namespace detail
 
 // The per-row spans of one cone, found before any cell is visited so that the caller can size its
@@ -40,13 +60,25 @@ struct ConeSpan {
   int dy, dx0, dx1;
 };
 
-// fn(std::uint32_t cell, double delta, double theta) for every cell whose centre is within
-// `reach` metres of the sensor and within `halfAngle` radians of its axis (halfAngle < 90°).
-// Cells are visited row by row from the lowest world y, each row from the lowest x: a fixed order.
-// Before the first call, reserve(bound) is told how many calls there can be at most.
-template <class Reserve, class Fn>
-void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const GridSpec& grid,
-                     const BeamTables& tables, Reserve&& reserve, Fn&& fn) {
+// One row of a cone: `count` cells, consecutive in the grid from linear index `cell`, whose table
+// entries are entries[0 .. count), every one of them within the reach and the half-angle.
+// `heading` is the sensor's heading, moved by a whole turn in a row whose bearings lie across the
+// ±π line from it: there bearing − heading is the angle off the axis with no wrap per cell.
+struct ConeRow {
+  std::uint32_t cell;
+  int count;
+  const BeamTables::Entry* entries;
+  double heading;
+};
+
+// row(const ConeRow&) for every row of grid cells whose centres lie within `reach` metres of the
+// sensor and within `halfAngle` radians of its axis (halfAngle < 90°), judged by the BeamTables
+// entry of each cell: distance <= (float)reach and |bearing − heading| <= halfAngle after one 2π
+// correction. Rows come from the lowest world y. Before the first row, reserve(bound) is told how
+// many cells there can be at most.
+template <class Reserve, class RowFn>
+void forEachConeRow(const Pose2D& sensor, double reach, double halfAngle, const GridSpec& grid,
+                    const BeamTables& tables, Reserve&& reserve, RowFn&& row) {
   const double c = grid.cellSize;
   const double u = (sensor.x() - grid.origin.x()) / c;
   const double v = (sensor.y() - grid.origin.y()) / c;
@@ -70,11 +102,20 @@ void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const
   // the float tables' error, so they hold every cell the per-cell test below accepts.
   constexpr double kSlack = 1e-3;
 
+  // The rows the cone spans: its extent in y is that of the apex, the arc's two ends and, where
+  // the arc passes straight up or down, its top or bottom (a row or more of margin each side).
+  auto covers = [h, halfAngle](double direction) {
+    const double raw = direction - h;
+    return std::abs(raw + detail::turn(raw)) <= halfAngle;
+  };
+  constexpr double kHalfPi = std::numbers::pi / 2.0;
+  const double top = covers(kHalfPi) ? R : std::max({0.0, R * d1y, R * d2y});
+  const double bottom = covers(-kHalfPi) ? -R : std::min({0.0, R * d1y, R * d2y});
   const int r = tables.radius();
-  const int dy0 = std::max({-r, static_cast<int>(std::floor(ay - 0.5 - R)) - 1, -iv});
+  const int dy0 = std::max({-r, detail::floorToInt(ay - 0.5 + bottom - kSlack) - 1, -iv});
   const int dy1 =
-      std::min({r, static_cast<int>(std::ceil(ay - 0.5 + R)) + 1, grid.height - 1 - iv});
-  // Per thread, so workers never share it; fn must not call forEachConeCell itself.
+      std::min({r, detail::ceilToInt(ay - 0.5 + top + kSlack) + 1, grid.height - 1 - iv});
+  // Per thread, so workers never share it; row must not call forEachConeRow itself.
   thread_local std::vector<ConeSpan> spans;
   spans.clear();
   std::size_t bound = 0;
@@ -89,9 +130,9 @@ void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const
     detail::clip(d1y, d1x * y + kSlack, lo, hi);
     detail::clip(-d2y, -d2x * y + kSlack, lo, hi);
     if (!(lo <= hi)) continue;
-    // Cell dx has its centre at x = dx + 0.5 - ax.
-    const int dx0 = std::max({-r, static_cast<int>(std::ceil(lo - 0.5 + ax)), -iu});
-    const int dx1 = std::min({r, static_cast<int>(std::floor(hi - 0.5 + ax)), grid.width - 1 - iu});
+    // Cell dx has its centre at x = dx + 0.5 - ax; lo and hi are within ±(R + kSlack).
+    const int dx0 = std::max({-r, detail::ceilToInt(lo - 0.5 + ax), -iu});
+    const int dx1 = std::min({r, detail::floorToInt(hi - 0.5 + ax), grid.width - 1 - iu});
     if (dx0 > dx1) continue;
     spans.push_back(ConeSpan{dy, dx0, dx1});
     bound += static_cast<std::size_t>(dx1 - dx0 + 1);
@@ -101,33 +142,42 @@ void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const
   const BeamTables::Entry* t = tables.table(qx, qy);
   const int side = tables.side();
   const float reachF = static_cast<float>(reach);
-  constexpr double kPi = std::numbers::pi;
-  // Bearings are in [-π, π]: bearing − heading needs a 2π correction only in a cone that crosses
-  // the ±π line. Elsewhere a raw difference beyond ±halfAngle is simply outside.
-  const bool crossesPi = h + halfAngle >= kPi || h - halfAngle < -kPi;
-  auto walk = [&](auto wrap) {
-    for (const ConeSpan& span : spans) {
-      const BeamTables::Entry* row = t + (span.dy + r) * side + r;
-      const std::uint32_t rowBase = static_cast<std::uint32_t>((iv + span.dy) * grid.width + iu);
-      for (int dx = span.dx0; dx <= span.dx1; ++dx) {
-        const BeamTables::Entry e = row[dx];
-        if (e.distance > reachF) continue;
-        double theta = static_cast<double>(e.bearing) - h;
-        if constexpr (decltype(wrap)::value) {
-          if (theta > kPi)
-            theta -= 2.0 * kPi;
-          else if (theta < -kPi)
-            theta += 2.0 * kPi;
-        }
-        if (std::abs(theta) > halfAngle) continue;
-        fn(rowBase + static_cast<std::uint32_t>(dx), static_cast<double>(e.distance), theta);
-      }
-    }
+  auto accepts = [&](const BeamTables::Entry& e) {
+    return e.distance <= reachF && std::abs(detail::offAxis(e.bearing, h)) <= halfAngle;
   };
-  if (crossesPi)
-    walk(std::true_type{});
-  else
-    walk(std::false_type{});
+  for (const ConeSpan& span : spans) {
+    const BeamTables::Entry* entries = t + (span.dy + r) * side + r;
+    // The cone meets a row of cell centres in one interval: the accepted cells of the span are
+    // contiguous (along a row the distance falls then rises, and the bearing is monotonic and on
+    // one side of the ±π line, as no row of centres passes through the apex), so trimming the
+    // span's ends leaves exactly them.
+    int dx0 = span.dx0, dx1 = span.dx1;
+    while (dx0 <= dx1 && !accepts(entries[dx0])) ++dx0;
+    while (dx1 > dx0 && !accepts(entries[dx1])) --dx1;
+    if (dx0 > dx1) continue;
+    // The accepted cells of one row are all on one side of the ±π line: the same correction
+    // serves them all.
+    const double rowHeading = h - detail::turn(static_cast<double>(entries[dx0].bearing) - h);
+    row(ConeRow{static_cast<std::uint32_t>((iv + span.dy) * grid.width + iu + dx0), dx1 - dx0 + 1,
+                entries + dx0, rowHeading});
+  }
+}
+
+// fn(std::uint32_t cell, double delta, double theta) for every cell of forEachConeRow, in its
+// order (row by row from the lowest world y, each row from the lowest x), theta in [-π, π].
+// Before the first call, reserve(bound) is told how many calls there can be at most.
+template <class Reserve, class Fn>
+void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const GridSpec& grid,
+                     const BeamTables& tables, Reserve&& reserve, Fn&& fn) {
+  const double h = wrapAngle(sensor.heading);
+  forEachConeRow(sensor, reach, halfAngle, grid, tables, std::forward<Reserve>(reserve),
+                 [&](const ConeRow& row) {
+                   for (int k = 0; k < row.count; ++k) {
+                     const BeamTables::Entry e = row.entries[k];
+                     fn(row.cell + static_cast<std::uint32_t>(k), static_cast<double>(e.distance),
+                        detail::offAxis(e.bearing, h));
+                   }
+                 });
 }
 
 // Without a bound: for callers that only count or collect cells.

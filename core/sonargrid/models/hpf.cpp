@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sonargrid/models/cone_model.h"
 #include "sonargrid/models/model_classes.h"
@@ -10,35 +11,26 @@
 namespace sg {
 namespace {
 
-struct HpfBeam {
-  bool active = false;
-  double reach = 0.0;
-  double halfAngle = 0.0;
-  double range = 0.0;  // R, or the maximum range for a no-echo reading
-  bool echo = true;
-  double epsilon = 0.0;
-  double invEpsilon = 0.0;
-  double rMin = 0.0;
-  double invEmptySpan = 0.0;  // 1 / (R - ε - R_min); 0 when the empty region is empty
-  double emptyEnd = 0.0;      // R - ε
-  double invHalfAngle = 0.0;  // 2 / ω
+// Per reading; S is double for evaluate() and float for the footprint (cone_model.h).
+template <class S>
+struct HpfShape {
+  S occupiedLo, occupiedHi;  // [R − ε, R + ε]; empty without an echo
+  S emptyLo, emptyHi;        // [R_min, R − ε]; empty when R − ε <= R_min
+  S range, invEpsilon, rMin;
+  S invEmptySpan;  // 1 / (R − ε − R_min)
+  S invHalfAngle;  // 2 / ω
 
-  ModelValue at(double delta, double theta) const {
-    if (std::abs(theta) > halfAngle || delta > reach) return {};
-    return inside(delta, theta);
-  }
-  ModelValue inside(double delta, double theta) const {
-    const double t = theta * invHalfAngle;
-    const double angular = 1.0 - t * t;  // Ea = Oa = 1 - (2θ/ω)², eqs 3 and 6
-    if (echo && delta >= range - epsilon && delta <= range + epsilon) {
-      const double d = (delta - range) * invEpsilon;
-      return fromEvidence(BeamRegion::Occupied, 0.0, (1.0 - d * d) * angular);  // eq 5 × eq 6
-    }
-    if (invEmptySpan > 0.0 && delta >= rMin && delta <= emptyEnd) {
-      const double d = (delta - rMin) * invEmptySpan;
-      return fromEvidence(BeamRegion::Empty, (1.0 - d * d) * angular, 0.0);  // eq 2 × eq 3
-    }
-    return {};
+  template <class T>
+  ConeValue<T> value(T delta, T absTheta) const {
+    const T t = absTheta * invHalfAngle;
+    const T angular = S(1) - t * t;  // Ea = Oa = 1 − (2θ/ω)², eqs 3 and 6
+    const T dOcc = (delta - range) * invEpsilon;
+    const T dEmp = (delta - rMin) * invEmptySpan;
+    const auto occupied = delta >= occupiedLo && delta <= occupiedHi;
+    const auto empty = delta >= emptyLo && delta <= emptyHi;
+    const T pO = occupied ? (S(1) - dOcc * dOcc) * angular : T{};   // eq 5 × eq 6
+    const T pE = occupied ? T{} : (S(1) - dEmp * dEmp) * angular;   // eq 2 × eq 3
+    return {occupied, empty, pE, pO, S(0.5) + S(0.5) * (pO - pE)};  // fromEvidence
   }
 };
 
@@ -47,7 +39,8 @@ class HpfModel final : public ConeModel<HpfModel> {
   static const ModelInfo& staticInfo();
   void configure(const ParameterSet& params) override;
   double reach(double maxRange) const override;
-  HpfBeam prepare(double range, double maxRange) const;
+  template <class S>
+  ConeBeam<HpfShape<S>> prepare(double range, double maxRange) const;
 
  private:
   double epsilon_ = 0.1, omega_ = 0.436, rMin_ = 0.0;
@@ -82,37 +75,31 @@ void HpfModel::configure(const ParameterSet& p) {
   noEchoFree_ = p.get("no_echo") != 0.0;
 }
 
-namespace {
-HpfBeam prepareHpf(double range, double maxRange, double epsilon, double omega, double rMin,
-                   bool noEchoFree) {
-  HpfBeam b;
-  b.echo = std::isfinite(range);
-  if (!b.echo && !noEchoFree) return b;
+template <class S>
+ConeBeam<HpfShape<S>> HpfModel::prepare(double range, double maxRange) const {
+  ConeBeam<HpfShape<S>> b;
+  const bool echo = std::isfinite(range);
+  if (!echo && !noEchoFree_) return b;
   b.active = true;
-  b.halfAngle = omega / 2.0;
-  b.invHalfAngle = 2.0 / omega;
-  b.epsilon = epsilon;
-  b.invEpsilon = 1.0 / epsilon;
-  b.rMin = rMin;
-  if (b.echo) {
-    b.range = range;
-    b.emptyEnd = range - epsilon;
-    b.reach = range + epsilon;
-  } else {
-    // No echo: nothing within the maximum range, so the empty region runs to it and there is no
-    // occupied arc.
-    b.range = maxRange;
-    b.emptyEnd = maxRange;
-    b.reach = maxRange;
-  }
-  const double span = b.emptyEnd - rMin;
-  b.invEmptySpan = span > 0.0 ? 1.0 / span : 0.0;
+  b.halfAngle = omega_ / 2.0;
+  // No echo: nothing within the maximum range, so the empty region runs to it and there is no
+  // occupied arc.
+  const double r = echo ? range : maxRange;
+  const double emptyEnd = echo ? range - epsilon_ : maxRange;
+  b.reach = echo ? range + epsilon_ : maxRange;
+  const double span = emptyEnd - rMin_;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  HpfShape<S>& h = b.shape;
+  h.occupiedLo = roundUp<S>(echo ? range - epsilon_ : kInf);
+  h.occupiedHi = roundDown<S>(echo ? range + epsilon_ : -kInf);
+  h.emptyLo = roundUp<S>(span > 0.0 ? rMin_ : kInf);
+  h.emptyHi = roundDown<S>(span > 0.0 ? emptyEnd : -kInf);
+  h.range = S(r);
+  h.invEpsilon = S(1.0 / epsilon_);
+  h.rMin = S(rMin_);
+  h.invEmptySpan = S(span > 0.0 ? 1.0 / span : 0.0);
+  h.invHalfAngle = S(2.0 / omega_);
   return b;
-}
-}  // namespace
-
-HpfBeam HpfModel::prepare(double range, double maxRange) const {
-  return prepareHpf(range, maxRange, epsilon_, omega_, rMin_, noEchoFree_);
 }
 
 double HpfModel::reach(double maxRange) const {

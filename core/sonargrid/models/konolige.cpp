@@ -42,7 +42,7 @@ double shadowRange(const KonoligeSettings& s, double D) {
   return (D - kZShadow * s.sd0) / (1.0 + kZShadow * s.sd1);
 }
 
-// φ(z) and Φ(z) sampled together, so one index serves both.
+// φ(z) and Φ(z) sampled together, so one index serves both; in double, and in float for lanes.
 class NormalTable {
  public:
   NormalTable() {
@@ -51,6 +51,10 @@ class NormalTable {
       pdf_[static_cast<std::size_t>(i)] =
           std::exp(-0.5 * z * z) / std::sqrt(2.0 * std::numbers::pi);
       cdf_[static_cast<std::size_t>(i)] = 0.5 * std::erfc(-z / std::numbers::sqrt2);
+    }
+    for (std::size_t i = 0; i <= kIntervals; ++i) {
+      lanes_[i] = {static_cast<float>(pdf_[i]), static_cast<float>(pdf_[i + 1] - pdf_[i]),
+                   static_cast<float>(cdf_[i]), static_cast<float>(cdf_[i + 1] - cdf_[i])};
     }
   }
   // Linear interpolation; z is at least kZShadow here, and above kZMax both are flat.
@@ -61,11 +65,33 @@ class NormalTable {
     pdf = pdf_[k] + w * (pdf_[k + 1] - pdf_[k]);
     cdf = cdf_[k] + w * (cdf_[k + 1] - cdf_[k]);
   }
+  void operator()(lanes::Floats z, lanes::Floats& pdf, lanes::Floats& cdf) const {
+    // z · kScale is exact (a power of two), and so is its distance w from the sample below it: in
+    // float, (z + kZMax) · kScale would round w to 2.4e-4 of an interval, and λ multiplies φ by
+    // 1/(d F), some 500.
+    const lanes::Floats zs =
+        lanes::clamp(z, lanes::Floats{} - float(kZMax), lanes::Floats{} + float(kZMax)) *
+        float(kScale);
+    lanes::Floats below = __builtin_convertvector(__builtin_convertvector(zs, lanes::Ints),
+                                                  lanes::Floats);  // towards zero
+    below = below > zs ? below - 1.0f : below;                     // floor
+    const lanes::Ints k = __builtin_convertvector(below, lanes::Ints) + kIntervals / 2;
+    const lanes::Floats w = zs - below;
+    // One row {φ, Δφ, Φ, ΔΦ} per lane, transposed into four vectors.
+    lanes::Floats p0 = lanes::load(lanes_[static_cast<std::size_t>(k[0])].data());
+    lanes::Floats p1 = lanes::load(lanes_[static_cast<std::size_t>(k[1])].data());
+    lanes::Floats c0 = lanes::load(lanes_[static_cast<std::size_t>(k[2])].data());
+    lanes::Floats c1 = lanes::load(lanes_[static_cast<std::size_t>(k[3])].data());
+    lanes::transpose(p0, p1, c0, c1);
+    pdf = p0 + w * p1;
+    cdf = c0 + w * c1;
+  }
 
  private:
   static constexpr int kIntervals = 4096;
   static constexpr double kScale = kIntervals / (2.0 * kZMax);
   std::array<double, kIntervals + 2> pdf_{}, cdf_{};
+  std::array<std::array<float, 4>, kIntervals + 1> lanes_{};
 };
 
 const NormalTable& normalTable() {
@@ -73,44 +99,35 @@ const NormalTable& normalTable() {
   return t;
 }
 
-// λ to the Footprint's three values: P = λ/(1 + λ), pO = 2P − 1 = (λ − 1)/(λ + 1), pE = −that.
-ModelValue fromLikelihoodRatio(double lambda) {
-  const double inv = 1.0 / (1.0 + lambda);
-  if (lambda > 1.0)
-    return ModelValue{BeamRegion::Occupied, 0.0, (lambda - 1.0) * inv, lambda * inv};
-  return ModelValue{BeamRegion::Empty, (1.0 - lambda) * inv, 0.0, lambda * inv};
-}
-
-struct KonoligeBeam {
-  bool active = false;
-  double reach = 0.0;
-  double halfAngle = 0.0;
+// Per reading; S is double for evaluate() and float for the footprint (cone_model.h).
+template <class S>
+struct KonoligeShape {
   bool echo = true;
-  double range = 0.0;
-  const KonoligeSettings* s = nullptr;
+  S range, invF;
+  S attenuation, attenuationSlope, sd0, sd1;
   const SampledFunction* lobe = nullptr;
   const NormalTable* normal = nullptr;
-  double invF = 0.0;
 
-  ModelValue at(double r, double theta) const {
-    if (std::abs(theta) > halfAngle || r > reach) return {};
-    return inside(r, theta);
-  }
-  ModelValue inside(double r, double theta) const {
-    const double t = std::abs(theta);
-    const double a = s->attenuation * (1.0 - std::min(1.0, s->attenuationSlope * r));
-    if (a <= 0.0) return {};  // past the detection range the reading says nothing
-    const double g = a * (*lobe)(t);
-    double lambda;
+  template <class T>
+  ConeValue<T> value(T r, T t) const {
+    const T a = attenuation * (S(1) - lanes::min(T{} + S(1), attenuationSlope * r));
+    const T g = a * (*lobe)(t);
+    T lambda;
     if (echo) {
-      const double invD = 1.0 / (s->sd0 + s->sd1 * r);
-      double pdf, cdf;
+      const T invD = S(1) / (sd0 + sd1 * r);
+      T pdf, cdf;
       (*normal)((range - r) * invD, pdf, cdf);
-      lambda = g * pdf * invF * invD + 1.0 - g * cdf;
+      lambda = g * pdf * invF * invD + S(1) - g * cdf;
     } else {
-      lambda = 1.0 - g;
+      lambda = S(1) - g;
     }
-    return fromLikelihoodRatio(lambda);
+    // λ to the Footprint's three values: P = λ/(1 + λ), pO = 2P − 1 = (λ − 1)/(λ + 1), pE = −that.
+    const T inv = S(1) / (S(1) + lambda);
+    const auto occupied = lambda > S(1);
+    // Past the detection range (a = 0) the reading says nothing.
+    const auto heard = a > S(0);
+    return {heard && occupied, heard && !occupied, occupied ? T{} : (S(1) - lambda) * inv,
+            occupied ? (lambda - S(1)) * inv : T{}, lambda * inv};
   }
 };
 
@@ -120,7 +137,8 @@ class KonoligeModel final : public ConeModel<KonoligeModel> {
   static const ModelInfo& staticInfo();
   void configure(const ParameterSet& params) override;
   double reach(double maxRange) const override;
-  KonoligeBeam prepare(double range, double maxRange) const;
+  template <class S>
+  ConeBeam<KonoligeShape<S>> prepare(double range, double maxRange) const;
 
  private:
   KonoligeSettings s_;
@@ -174,30 +192,29 @@ void KonoligeModel::configure(const ParameterSet& p) {
                           [sigma](double t) { return std::exp(-t * t / (2.0 * sigma * sigma)); });
 }
 
-namespace {
-KonoligeBeam prepareKonolige(const KonoligeSettings& s, const SampledFunction& lobe, double range,
-                             double maxRange) {
-  KonoligeBeam b;
-  b.echo = std::isfinite(range);
-  if (!b.echo && !s.noEchoFree) return b;
+template <class S>
+ConeBeam<KonoligeShape<S>> KonoligeModel::prepare(double range, double maxRange) const {
+  ConeBeam<KonoligeShape<S>> b;
+  const bool echo = std::isfinite(range);
+  if (!echo && !s_.noEchoFree) return b;
   b.active = true;
-  b.s = &s;
-  b.lobe = &lobe;
-  b.normal = &normalTable();
-  b.invF = 1.0 / s.falseRate;
-  b.halfAngle = s.omega / 2.0;
-  b.range = b.echo ? range : maxRange;
+  b.halfAngle = s_.omega / 2.0;
   // Beyond z = −5 (or the maximum range without an echo) and beyond the detection range 1/k the
   // reading says nothing: no cell there needs visiting.
-  double reach = b.echo ? shadowRange(s, range) : maxRange;
-  if (s.attenuationSlope > 0.0) reach = std::min(reach, 1.0 / s.attenuationSlope);
+  double reach = echo ? shadowRange(s_, range) : maxRange;
+  if (s_.attenuationSlope > 0.0) reach = std::min(reach, 1.0 / s_.attenuationSlope);
   b.reach = reach;
+  KonoligeShape<S>& k = b.shape;
+  k.echo = echo;
+  k.range = S(echo ? range : maxRange);
+  k.invF = S(1.0 / s_.falseRate);
+  k.attenuation = S(s_.attenuation);
+  k.attenuationSlope = S(s_.attenuationSlope);
+  k.sd0 = S(s_.sd0);
+  k.sd1 = S(s_.sd1);
+  k.lobe = &lobe_;
+  k.normal = &normalTable();
   return b;
-}
-}  // namespace
-
-KonoligeBeam KonoligeModel::prepare(double range, double maxRange) const {
-  return prepareKonolige(s_, lobe_, range, maxRange);
 }
 
 double KonoligeModel::reach(double maxRange) const {

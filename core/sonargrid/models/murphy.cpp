@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sonargrid/models/cone_model.h"
 #include "sonargrid/models/model_classes.h"
@@ -19,47 +20,48 @@
 namespace sg {
 namespace {
 
-struct MurphyBeam {
-  bool active = false;
-  double reach = 0.0;
-  double halfAngle = 0.0;  // β
-  bool echo = true;
-  double s = 0.0, R = 5.0, tolerance = 0.1, maxOcc = 0.98;
-  double halfInvR = 0.1, halfInvBeta = 2.0;  // 1/(2R), 1/(2β): no division per cell
+// Per reading; S is double for evaluate() and float for the footprint (cone_model.h).
+template <class S>
+struct MurphyShape {
+  S occupiedLo, occupiedHi;  // Region I: |r − s| <= tolerance; empty without an echo
+  S emptyBelow;              // Region II: r < s − tolerance; everywhere without an echo
+  S R, beta, maxOcc, minOcc;
+  S halfInvR, halfInvBeta;  // 1/(2R), 1/(2β): no division per cell
 
-  ModelValue at(double r, double alpha) const {
-    if (std::abs(alpha) > halfAngle || r > reach) return {};
-    return inside(r, alpha);
-  }
-  ModelValue inside(double r, double alpha) const {
-    const double a = std::abs(alpha);
-    const double v = std::clamp((R - r) * halfInvR + (halfAngle - a) * halfInvBeta, 0.0, 1.0);
-    if (echo && std::abs(r - s) <= tolerance) {
-      const double pOcc = std::clamp(v * maxOcc, 1.0 - maxOcc, maxOcc);
-      return ModelValue{BeamRegion::Occupied, 0.0, pOcc, pOcc};
-    }
-    if (!echo || r < s - tolerance) {
-      const double pEmp = std::min(v, maxOcc);
-      return ModelValue{BeamRegion::Empty, pEmp, 0.0, std::clamp(1.0 - v, 1.0 - maxOcc, maxOcc)};
-    }
-    return {};
+  template <class T>
+  ConeValue<T> value(T r, T a) const {
+    // v <= 1 as r, a >= 0, so only its lower clamp can bind (and v · Max_occ <= Max_occ).
+    const T v = lanes::max(T{}, (R - r) * halfInvR + (beta - a) * halfInvBeta);
+    const auto occupied = r >= occupiedLo && r <= occupiedHi;
+    const T pOcc = lanes::max(v * maxOcc, T{} + minOcc);
+    const T pE = occupied ? T{} : lanes::min(v, T{} + maxOcc);
+    const T pO = occupied ? pOcc : T{};
+    const T p = occupied ? pOcc : lanes::clamp(S(1) - v, T{} + minOcc, T{} + maxOcc);
+    return {occupied, r < emptyBelow, pE, pO, p};
   }
 };
 
-MurphyBeam prepareMurphy(double range, double maxRange, double R, double beta, double tolerance,
-                         double maxOcc, bool noEchoFree) {
-  MurphyBeam b;
-  b.echo = std::isfinite(range);
-  if (!b.echo && !noEchoFree) return b;
+template <class S>
+ConeBeam<MurphyShape<S>> prepareMurphy(double range, double maxRange, double R, double beta,
+                                       double tolerance, double maxOcc, bool noEchoFree) {
+  ConeBeam<MurphyShape<S>> b;
+  const bool echo = std::isfinite(range);
+  if (!echo && !noEchoFree) return b;
   b.active = true;
   b.halfAngle = beta;
-  b.R = R;
-  b.halfInvR = 0.5 / R;
-  b.halfInvBeta = 0.5 / beta;
-  b.tolerance = tolerance;
-  b.maxOcc = maxOcc;
-  b.s = b.echo ? range : maxRange;
-  b.reach = b.echo ? range + tolerance : std::min(maxRange, R);
+  b.reach = echo ? range + tolerance : std::min(maxRange, R);
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  MurphyShape<S>& m = b.shape;
+  m.occupiedLo = roundUp<S>(echo ? range - tolerance : kInf);
+  m.occupiedHi = roundDown<S>(echo ? range + tolerance : -kInf);
+  // r < x is r < the float x rounds up to, for a float r.
+  m.emptyBelow = roundUp<S>(echo ? range - tolerance : kInf);
+  m.R = S(R);
+  m.beta = S(beta);
+  m.maxOcc = S(maxOcc);
+  m.minOcc = S(1.0 - maxOcc);
+  m.halfInvR = S(0.5 / R);
+  m.halfInvBeta = S(0.5 / beta);
   return b;
 }
 
@@ -68,8 +70,10 @@ class MurphyModel final : public ConeModel<MurphyModel> {
   static const ModelInfo& staticInfo();
   void configure(const ParameterSet& params) override;
   double reach(double maxRange) const override;
-  MurphyBeam prepare(double range, double maxRange) const {
-    return prepareMurphy(range, maxRange, maxRange_, beta_, tolerance_, maxOccupied_, noEchoFree_);
+  template <class S>
+  ConeBeam<MurphyShape<S>> prepare(double range, double maxRange) const {
+    return prepareMurphy<S>(range, maxRange, maxRange_, beta_, tolerance_, maxOccupied_,
+                            noEchoFree_);
   }
 
  private:

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "sonargrid/models/cone_model.h"
 #include "sonargrid/models/model_classes.h"
@@ -16,60 +17,48 @@
 namespace sg {
 namespace {
 
-struct ParameterizedBeam {
-  bool active = false;
-  double reach = 0.0;
-  double halfAngle = 0.0;  // P5 in radians
-  double invHalfAngle = 0.0;
-  double emptyEnd = 0.0;    // s − P3, or the maximum range without an echo
-  double emptySlope = 0.0;  // (0.5 − P2 − P1) / emptyEnd
-  double s = 0.0, p1 = 0.0, p2 = 0.0, p3 = 0.0, p4 = 0.0;
-  double tentSlope = 0.0;  // (P4 − 0.5 − P2) / P3
-  bool echo = true;
+// Per reading; S is double for evaluate() and float for the footprint (cone_model.h).
+template <class S>
+struct ParameterizedShape {
+  S emptyBelow;  // Region II: r < s − P3; everywhere without an echo
+  S halfAngle;   // P5 in radians
+  S invHalfAngle;
+  S emptySlope;  // (0.5 − P2 − P1) / (s − P3)
+  S s, p1, p4;
+  S tentSlope;  // (P4 − 0.5 − P2) / P3
 
-  ModelValue at(double r, double alpha) const {
-    if (std::abs(alpha) > halfAngle || r > reach) return {};
-    return inside(r, alpha);
-  }
-  ModelValue inside(double r, double alpha) const {
-    const double a = std::abs(alpha);
-    double axis;
-    BeamRegion region;
-    if (r < emptyEnd || !echo) {
-      axis = p1 + emptySlope * r;
-      region = BeamRegion::Empty;
-    } else {
-      // Tent: 0.5 + P2 at |r − s| = P3, P4 at r = s.
-      axis = p4 - tentSlope * std::abs(r - s);
-      region = BeamRegion::Occupied;
-    }
-    const double p = (halfAngle - a) * invHalfAngle * (axis - 0.5) + 0.5;  // eq 7
-    ModelValue v = fromProbability(p);
-    v.region = region;
-    return v;
+  template <class T>
+  ConeValue<T> value(T r, T a) const {
+    const auto empty = r < emptyBelow;
+    // Region II rises from P1; Region I is a tent, 0.5 + P2 at |r − s| = P3 and P4 at r = s.
+    const T axis = empty ? p1 + emptySlope * r : p4 - tentSlope * lanes::abs(r - s);
+    const T p = (halfAngle - a) * invHalfAngle * (axis - S(0.5)) + S(0.5);  // eq 7
+    const auto high = p > S(0.5);                                           // fromProbability
+    return {!empty, empty, high ? T{} : S(1) - S(2) * p, high ? S(2) * p - S(1) : T{}, p};
   }
 };
 
-ParameterizedBeam prepareParameterized(double range, double maxRange, double p1, double p2,
-                                       double p3, double p4, double p5, bool noEchoFree) {
-  ParameterizedBeam b;
-  b.echo = std::isfinite(range);
-  if (!b.echo && !noEchoFree) return b;
+template <class S>
+ConeBeam<ParameterizedShape<S>> prepareParameterized(double range, double maxRange, double p1,
+                                                     double p2, double p3, double p4, double p5,
+                                                     bool noEchoFree) {
+  ConeBeam<ParameterizedShape<S>> b;
+  const bool echo = std::isfinite(range);
+  if (!echo && !noEchoFree) return b;
   b.active = true;
   b.halfAngle = p5;
-  b.invHalfAngle = 1.0 / p5;
-  b.p1 = p1, b.p2 = p2, b.p3 = p3, b.p4 = p4;
-  b.tentSlope = (p4 - 0.5 - p2) / p3;
-  if (b.echo) {
-    b.s = range;
-    b.emptyEnd = range - p3;
-    b.reach = range + p3;
-  } else {
-    b.s = maxRange;
-    b.emptyEnd = maxRange;
-    b.reach = maxRange;
-  }
-  b.emptySlope = b.emptyEnd > 0.0 ? (0.5 - p2 - p1) / b.emptyEnd : 0.0;
+  const double emptyEnd = echo ? range - p3 : maxRange;
+  b.reach = echo ? range + p3 : maxRange;
+  ParameterizedShape<S>& m = b.shape;
+  // r < x is r < the float x rounds up to, for a float r.
+  m.emptyBelow = roundUp<S>(echo ? emptyEnd : std::numeric_limits<double>::infinity());
+  m.halfAngle = S(p5);
+  m.invHalfAngle = S(1.0 / p5);
+  m.emptySlope = S(emptyEnd > 0.0 ? (0.5 - p2 - p1) / emptyEnd : 0.0);
+  m.s = S(echo ? range : maxRange);
+  m.p1 = S(p1);
+  m.p4 = S(p4);
+  m.tentSlope = S((p4 - 0.5 - p2) / p3);
   return b;
 }
 
@@ -78,8 +67,9 @@ class ParameterizedModel final : public ConeModel<ParameterizedModel> {
   static const ModelInfo& staticInfo();
   void configure(const ParameterSet& params) override;
   double reach(double maxRange) const override;
-  ParameterizedBeam prepare(double range, double maxRange) const {
-    return prepareParameterized(range, maxRange, p1_, p2_, p3_, p4_, p5_, noEchoFree_);
+  template <class S>
+  ConeBeam<ParameterizedShape<S>> prepare(double range, double maxRange) const {
+    return prepareParameterized<S>(range, maxRange, p1_, p2_, p3_, p4_, p5_, noEchoFree_);
   }
 
  private:

@@ -4,9 +4,12 @@
 // [x0, x1] it returns the end values.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <vector>
+
+#include "sonargrid/models/lanes.h"
 
 namespace sg {
 
@@ -21,6 +24,12 @@ class SampledFunction {
     for (std::size_t i = 0; i < samples_.size(); ++i) {
       samples_[i] = f(x0 + std::min<double>(static_cast<double>(i), intervals) / scale_);
     }
+    lanes_.clear();
+    for (std::size_t i = 0; i + 1 < samples_.size(); ++i) {
+      lanes_.push_back(
+          {static_cast<float>(samples_[i]), static_cast<float>(samples_[i + 1] - samples_[i])});
+    }
+    lanes_.push_back(lanes_.back());  // read, never used, by the lanes of the last interval
   }
 
   double operator()(double x) const {
@@ -33,9 +42,27 @@ class SampledFunction {
     return samples_[k] + w * (samples_[k + 1] - samples_[k]);
   }
 
+  // The same per float lane (in single precision).
+  lanes::Floats operator()(lanes::Floats x) const {
+    const float last = static_cast<float>(lanes_.size() - 2);  // the interval count
+    const lanes::Floats t = lanes::clamp((x - static_cast<float>(x0_)) * static_cast<float>(scale_),
+                                         lanes::Floats{}, lanes::Floats{} + last);
+    const lanes::Ints k = __builtin_convertvector(t, lanes::Ints);
+    const lanes::Floats w = t - __builtin_convertvector(k, lanes::Floats);
+    // Each lane loads its sample, step and the next pair (lanes_ ends with a spare pair); the
+    // transpose puts the samples in `value` and the steps in `slope`.
+    lanes::Floats value = lanes::load(lanes_[static_cast<std::size_t>(k[0])].data());
+    lanes::Floats slope = lanes::load(lanes_[static_cast<std::size_t>(k[1])].data());
+    lanes::Floats c = lanes::load(lanes_[static_cast<std::size_t>(k[2])].data());
+    lanes::Floats d = lanes::load(lanes_[static_cast<std::size_t>(k[3])].data());
+    lanes::transpose(value, slope, c, d);
+    return value + w * slope;
+  }
+
  private:
   double x0_ = 0.0, x1_ = 1.0, scale_ = 1.0;
   std::vector<double> samples_{0.0, 0.0};
+  std::vector<std::array<float, 2>> lanes_{{0.0f, 0.0f}, {0.0f, 0.0f}};  // sample, step to next
 };
 
 }  // namespace sg

@@ -35,18 +35,25 @@ void BayesRule::reset(std::size_t cells) {
 }
 
 void BayesRule::apply(const Footprint& fp) {
-  for (const CellEvidence& c : fp.cells) {
+  // One loop per input, so the choice is not made per cell.
+  auto update = [this, &fp](auto probability) {
+    for (const CellEvidence& c : fp.cells) {
+      const double p = probability(c);
+      double& m = map_[c.cell];
+      const double num = p * m;
+      const double den = num + (1.0 - p) * (1.0 - m);
+      // den = 0 only when certain evidence meets a certain opposite cell; Bayes is undefined there
+      // and the cell keeps its value.
+      if (den > 0.0) m = num / den;
+    }
+  };
+  if (input_ == Input::Evidence) {
     // Paper 001 maps evidence to [0, 0.5] (empty) and [0.5, 1] (occupied): P = 0.5 + (pO − pE)/2.
-    const double p =
-        input_ == Input::Evidence
-            ? 0.5 + 0.5 * (static_cast<double>(c.occupied) - static_cast<double>(c.empty))
-            : static_cast<double>(c.probability);
-    double& m = map_[c.cell];
-    const double num = p * m;
-    const double den = num + (1.0 - p) * (1.0 - m);
-    // den = 0 only when certain evidence meets a certain opposite cell; Bayes is undefined there
-    // and the cell keeps its value.
-    if (den > 0.0) m = num / den;
+    update([](const CellEvidence& c) {
+      return 0.5 + 0.5 * (static_cast<double>(c.occupied) - static_cast<double>(c.empty));
+    });
+  } else {
+    update([](const CellEvidence& c) { return static_cast<double>(c.probability); });
   }
 }
 

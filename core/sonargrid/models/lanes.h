@@ -1,0 +1,64 @@
+#pragma once
+// Four single-precision lanes, for evaluating a cone model on a row of cells at a time (GCC and
+// Clang vector extensions: SSE on x86-64, plain scalar code on a target without vectors).
+// The helpers below are written so that the same model formula compiles for one double (the
+// model's evaluate(), what the beam view shows) and for four floats (the footprint): a comparison
+// gives a bool or a lane mask, and `mask ? a : b` picks per lane.
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+namespace sg::lanes {
+
+using Floats = float __attribute__((vector_size(16)));
+using Ints = std::int32_t __attribute__((vector_size(16)));
+constexpr int kWidth = 4;
+
+// std::max / std::min / std::clamp, for a double or per lane.
+template <class T>
+T max(T a, T b) {
+  return a < b ? b : a;
+}
+template <class T>
+T min(T a, T b) {
+  return b < a ? b : a;
+}
+template <class T>
+T clamp(T v, T lo, T hi) {
+  return min(max(v, lo), hi);
+}
+inline double abs(double x) {
+  return std::abs(x);
+}
+inline Floats abs(Floats x) {
+  return reinterpret_cast<Floats>(reinterpret_cast<Ints>(x) & 0x7fffffff);
+}
+
+// Whether every lane of a mask is set.
+inline bool all(Ints m) {
+  std::uint64_t w[2];
+  std::memcpy(w, &m, sizeof w);
+  return (w[0] & w[1]) == ~std::uint64_t{0};
+}
+
+// Four unaligned floats from memory.
+inline Floats load(const float* p) {
+  Floats v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// Rows a, b, c, d of a 4 × 4 matrix become its columns.
+inline void transpose(Floats& a, Floats& b, Floats& c, Floats& d) {
+  const Floats t0 = __builtin_shufflevector(a, b, 0, 4, 1, 5);
+  const Floats t1 = __builtin_shufflevector(c, d, 0, 4, 1, 5);
+  const Floats t2 = __builtin_shufflevector(a, b, 2, 6, 3, 7);
+  const Floats t3 = __builtin_shufflevector(c, d, 2, 6, 3, 7);
+  a = __builtin_shufflevector(t0, t1, 0, 1, 4, 5);
+  b = __builtin_shufflevector(t0, t1, 2, 3, 6, 7);
+  c = __builtin_shufflevector(t2, t3, 0, 1, 4, 5);
+  d = __builtin_shufflevector(t2, t3, 2, 3, 6, 7);
+}
+
+}  // namespace sg::lanes
