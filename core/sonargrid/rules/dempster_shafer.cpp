@@ -24,16 +24,16 @@ const RuleInfo& DempsterShaferRule::staticInfo() {
 void DempsterShaferRule::configure(const ParameterSet& /*params*/) {}
 
 void DempsterShaferRule::reset(std::size_t cells) {
-  occ_.assign(cells, 0.0);
-  emp_.assign(cells, 0.0);
+  mass_.assign(cells, Masses{});
 }
 
 void DempsterShaferRule::apply(const Footprint& fp) {
   for (const CellEvidence& c : fp.cells) {
     double o = std::clamp(static_cast<double>(c.occupied), 0.0, 1.0);
     double e = std::clamp(static_cast<double>(c.empty), 0.0, 1.0);
-    double& mo = occ_[c.cell];
-    double& me = emp_[c.cell];
+    Masses& m = mass_[c.cell];
+    double& mo = m.occ;
+    double& me = m.emp;
     // Every model gives a cell one kind of evidence; Dempster's rule then shortens to
     //   m(occ) = (m(occ) + m(unk) o) / (1 − m(emp) o),  m(emp) = m(emp)(1 − o) / (1 − m(emp) o)
     // (and symmetrically for e): the general form below with e = 0, in fewer operations.
@@ -75,8 +75,8 @@ void DempsterShaferRule::apply(const Footprint& fp) {
 }
 
 double DempsterShaferRule::occupancy(std::size_t i) const {
-  const double mu = 1.0 - occ_[i] - emp_[i];
-  return occ_[i] + 0.5 * mu;
+  const double mu = 1.0 - mass_[i].occ - mass_[i].emp;
+  return mass_[i].occ + 0.5 * mu;
 }
 
 }  // namespace sg

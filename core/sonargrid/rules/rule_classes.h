@@ -110,11 +110,15 @@ class DempsterShaferRule final : public UpdateRule {
   void reset(std::size_t cells) override;
   void apply(const Footprint& footprint) override;
   double occupancy(std::size_t cell) const override;
-  double native(std::size_t cell) const override { return occ_[cell] - emp_[cell]; }
-  bool filled(std::size_t cell) const override { return occ_[cell] > emp_[cell]; }
+  double native(std::size_t cell) const override { return mass_[cell].occ - mass_[cell].emp; }
+  bool filled(std::size_t cell) const override { return mass_[cell].occ > mass_[cell].emp; }
 
  private:
-  std::vector<double> occ_, emp_;  // m(occ), m(emp); m(unknown) = 1 − both
+  // m(unknown) = 1 − both. Side by side, so one cell's update touches one cache line.
+  struct Masses {
+    double occ = 0.0, emp = 0.0;
+  };
+  std::vector<Masses> mass_;
 };
 
 }  // namespace sg
