@@ -152,6 +152,18 @@ CsvImportDialog::CsvImportDialog(const QString& path, QWidget* parent)
   resize(900, 640);
 
   readPreview();
+  // A first row of names over rows of numbers is a header (the user can change it).
+  for (int i = 0; i + 1 < lines_.size(); ++i) {
+    if (lines_[i].trimmed().isEmpty() || lines_[i].trimmed().startsWith(QLatin1Char('#'))) continue;
+    bool numbers = true;
+    for (const QString& c : cells(lines_[i])) {
+      bool ok = false;
+      c.toDouble(&ok);
+      numbers = numbers && ok;
+    }
+    if (!numbers) header_->setValue(i + 1);
+    break;
+  }
   // A common layout to start from: time, x, y, θ, then the sonars in ring order.
   {
     building_ = true;

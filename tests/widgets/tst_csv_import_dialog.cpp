@@ -47,6 +47,8 @@ class TestCsvImportDialog : public QObject {
     // mm_ddeg.csv: a header row and 3 data rows of 8 comma-separated columns; the table's first
     // row holds the role choosers.
     QCOMPARE(d.columnCount(), 8);
+    // Its first row holds names over rows of numbers: taken for a header.
+    QVERIFY(d.columnSpec().startsWith(QStringLiteral("header=1,")));
     QCOMPARE(d.previewTable()->rowCount(), 1 + 4);
     QCOMPARE(d.previewTable()->item(2, 4)->text(), QStringLiteral("1500"));
     QCOMPARE(d.previewTable()->item(4, 3)->text(), QStringLiteral("900"));
@@ -91,6 +93,24 @@ class TestCsvImportDialog : public QObject {
     // The p3dx ring has 16 sonars, the rows 4: the core says so.
     QVERIFY(!d.previewParses());
     QVERIFY(!d.options().has_value());
+  }
+
+  void posesFromASecondFile() {
+    // tests/data/logs/ranges_only.txt: "time s0 s1 s2 s3" rows separated by blanks, a # comment.
+    const QString log = QStringLiteral(SONARGRID_TEST_DATA "/logs/ranges_only.txt");
+    ui::CsvImportDialog d(log);
+    QCOMPARE(d.columnCount(), 5);
+    d.setRole(0, Role::Time);
+    for (int k = 0; k < 4; ++k) d.setRole(1 + k, Role::Sonar, k);
+    d.setGeometryFile(kGeometry);
+    d.setPosesFile(QStringLiteral(SONARGRID_TEST_DATA "/logs/poses.txt"));
+    QCOMPARE(d.columnSpec(), QStringLiteral("time=1,sonars=2-5"));
+    QVERIFY2(d.previewParses(), qPrintable(d.result()));
+    const Dataset got = readLog(log.toStdString(), *d.options());
+    QCOMPARE(got.scans.size(), std::size_t(3));
+    // t = 0.25, halfway between the poses (0, 0, 0) at 0 and (1, 0, 0.5) at 0.5 of poses.txt.
+    QCOMPARE(got.scans[0].odometry.x(), 0.5);
+    QCOMPARE(got.scans[0].odometry.heading, 0.25);
   }
 
   void errorsNameTheLineAndField() {
