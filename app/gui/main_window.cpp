@@ -128,7 +128,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   statusBar()->addPermanentWidget(remapLabel_);
   loadBar_ = new QProgressBar(this);
   loadBar_->setRange(0, 100);
-  loadBar_->setMaximumWidth(260);
+  loadBar_->setFixedWidth(loadBar_->fontMetrics().horizontalAdvance(QLatin1Char('x')) * 40);
   loadBar_->setVisible(false);
   loadCancelButton_ = new QPushButton(tr("Cancel"), this);
   loadCancelButton_->setObjectName(QStringLiteral("cancelLoading"));
@@ -222,7 +222,6 @@ void MainWindow::createActions() {
   cancelLoadAction_->setShortcutContext(Qt::WindowShortcut);
   cancelLoadAction_->setEnabled(false);
   connect(cancelLoadAction_, &QAction::triggered, this, &MainWindow::cancelLoad);
-  addAction(cancelLoadAction_);
   openReferenceAction_ = new QAction(tr("Open &Reference Map…"), this);
   openReferenceAction_->setShortcut(QKeySequence(tr("Ctrl+Shift+O")));
   connect(openReferenceAction_, &QAction::triggered, this, &MainWindow::openReferenceDialog);
@@ -348,6 +347,7 @@ void MainWindow::createMenus() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
   file->addAction(openAction_);
   file->addAction(importCsvAction_);
+  file->addAction(cancelLoadAction_);
   recentMenu_ = file->addMenu(tr("Open &Recent"));
   QAction* example = file->addAction(tr("Open &Example…"));
   connect(example, &QAction::triggered, this, &MainWindow::openExample);
@@ -586,7 +586,9 @@ void MainWindow::loadLog(const QString& path, const LogOptions& options, bool qu
     worker->deleteLater();
   });
   loadBar_->setValue(0);
-  loadBar_->setFormat(tr("Loading %1: %p%").arg(QFileInfo(path).fileName()));
+  const QString name = loadBar_->fontMetrics().elidedText(QFileInfo(path).fileName(),
+                                                          Qt::ElideMiddle, loadBar_->width() / 2);
+  loadBar_->setFormat(tr("Loading %1: %p%").arg(name));
   loadBar_->setVisible(true);
   loadCancelButton_->setVisible(true);
   cancelLoadAction_->setEnabled(true);
