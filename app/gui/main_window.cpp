@@ -21,22 +21,28 @@
 #include <QMessageBox>
 #include <QMimeData>
 #include <QPainter>
+#include <QProgressBar>
+#include <QPushButton>
 #include <QSettings>
 #include <QStatusBar>
 #include <QSvgGenerator>
 #include <QTableWidget>
 #include <QTextBrowser>
+#include <QThread>
 #include <QTimer>
 #include <QVBoxLayout>
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <iostream>
 
 #include "beam_model_view.h"
+#include "csv_import_dialog.h"
 #include "datasets_location.h"
 #include "parameter_panel.h"
 #include "remap_controller.h"
 #include "sonargrid/export/map_export.h"
-#include "sonargrid/io/sglog.h"
+#include "sonargrid/io/log_reader.h"
 #include "sonargrid/models/sensor_model.h"
 #include "sonargrid/reference/read_reference.h"
 #include "sonargrid/rules/update_rule.h"
@@ -73,7 +79,29 @@ ParameterSet carryParameters(const std::string& model, const std::string& rule,
   return out;
 }
 
+// A .csv / .txt / .tsv file whose content is not another format: it needs a column mapping.
+bool needsColumns(const QString& path) {
+  const QString suffix = QFileInfo(path).suffix().toLower();
+  if (suffix != QLatin1String("csv") && suffix != QLatin1String("txt") &&
+      suffix != QLatin1String("tsv"))
+    return false;
+  QFile f(path);
+  if (!f.open(QIODevice::ReadOnly)) return false;  // readLog names the file and the problem
+  const QByteArray head = f.read(static_cast<qint64>(kDetectBytes));
+  const LogFormat detected = detectLogFormat(std::string_view(head.constData(), head.size()));
+  return detected == LogFormat::Csv || detected == LogFormat::Auto;
+}
+
 }  // namespace
+
+// One load on a worker thread. The window forgets a job it cancelled or replaced; the worker still
+// holds it until it notices `cancel`.
+struct MainWindow::LoadJob {
+  QString path;
+  bool quiet = false;
+  std::atomic<bool> cancel{false};
+  std::atomic<int> lastPercent{-1};
+};
 
 MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
     : QMainWindow(parent),
@@ -98,6 +126,17 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
 
   statusBar()->addWidget(hoverLabel_, 1);
   statusBar()->addPermanentWidget(remapLabel_);
+  loadBar_ = new QProgressBar(this);
+  loadBar_->setRange(0, 100);
+  loadBar_->setFixedWidth(loadBar_->fontMetrics().horizontalAdvance(QLatin1Char('x')) * 40);
+  loadBar_->setVisible(false);
+  loadCancelButton_ = new QPushButton(tr("Cancel"), this);
+  loadCancelButton_->setObjectName(QStringLiteral("cancelLoading"));
+  loadCancelButton_->setToolTip(tr("Stop loading (Esc); the open log stays"));
+  loadCancelButton_->setVisible(false);
+  connect(loadCancelButton_, &QPushButton::clicked, this, &MainWindow::cancelLoad);
+  statusBar()->addPermanentWidget(loadBar_);
+  statusBar()->addPermanentWidget(loadCancelButton_);
   hoverLabel_->setText(tr("Open a log (Ctrl+O) or drop one on the window."));
 
   createActions();
@@ -131,6 +170,12 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
 
 MainWindow::~MainWindow() {
   if (rememberSettingsTimer_->isActive()) rememberSettings();
+  if (load_) load_->cancel = true;
+  // Every worker posts to this window: let each end (at its next block) before the window goes.
+  for (QThread* t : loaders_) {
+    t->wait();
+    delete t;
+  }
 }
 
 sg::MapperSettings MainWindow::lastSettings() {
@@ -170,6 +215,13 @@ void MainWindow::createActions() {
   openAction_ = new QAction(tr("&Open Log…"), this);
   openAction_->setShortcut(QKeySequence::Open);
   connect(openAction_, &QAction::triggered, this, &MainWindow::openLogDialog);
+  importCsvAction_ = new QAction(tr("&Import CSV…"), this);
+  connect(importCsvAction_, &QAction::triggered, this, &MainWindow::importCsvDialog);
+  cancelLoadAction_ = new QAction(tr("Cancel Loading"), this);
+  cancelLoadAction_->setShortcut(QKeySequence(Qt::Key_Escape));
+  cancelLoadAction_->setShortcutContext(Qt::WindowShortcut);
+  cancelLoadAction_->setEnabled(false);
+  connect(cancelLoadAction_, &QAction::triggered, this, &MainWindow::cancelLoad);
   openReferenceAction_ = new QAction(tr("Open &Reference Map…"), this);
   openReferenceAction_->setShortcut(QKeySequence(tr("Ctrl+Shift+O")));
   connect(openReferenceAction_, &QAction::triggered, this, &MainWindow::openReferenceDialog);
@@ -294,6 +346,8 @@ void MainWindow::createDocks() {
 void MainWindow::createMenus() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
   file->addAction(openAction_);
+  file->addAction(importCsvAction_);
+  file->addAction(cancelLoadAction_);
   recentMenu_ = file->addMenu(tr("Open &Recent"));
   QAction* example = file->addAction(tr("Open &Example…"));
   connect(example, &QAction::triggered, this, &MainWindow::openExample);
@@ -480,16 +534,123 @@ bool MainWindow::reportError(const QString& title, const QString& message, bool 
 }
 
 bool MainWindow::openLog(const QString& path, bool quiet) {
-  std::shared_ptr<const Dataset> loaded;
-  try {
-    loaded =
-        std::make_shared<const Dataset>(readSglog(QDir::toNativeSeparators(path).toStdString()));
-  } catch (const std::exception& e) {
-    return reportError(tr("Cannot open log"), QString::fromStdString(e.what()), quiet);
+  if (!quiet && needsColumns(path)) return importCsv(path);
+  loadLog(path, LogOptions{}, quiet);
+  return !quiet || waitForLoad();
+}
+
+bool MainWindow::importCsv(const QString& path) {
+  ui::CsvImportDialog dialog(path, this);
+  if (dialog.exec() != QDialog::Accepted || !dialog.options()) return false;
+  loadLog(path, *dialog.options());
+  return true;
+}
+
+void MainWindow::loadLog(const QString& path, const LogOptions& options, bool quiet) {
+  cancelLoad();
+  auto job = std::make_shared<LoadJob>();
+  job->path = path;
+  job->quiet = quiet;
+  load_ = job;
+  LogOptions o = options;
+  o.cancel = &job->cancel;
+  // Called on the worker after each block: post a whole-percent change to the GUI thread.
+  o.progress = [this, job](std::uint64_t done, std::uint64_t total) {
+    if (total == 0) return;
+    const int percent = static_cast<int>(done * 100 / total);
+    if (job->lastPercent.exchange(percent) == percent) return;
+    QMetaObject::invokeMethod(
+        this, [this, job, percent] { showLoadProgress(job, percent); }, Qt::QueuedConnection);
+  };
+  QThread* worker = QThread::create([this, job, o, file = QDir::toNativeSeparators(path)] {
+    std::shared_ptr<const Dataset> loaded;
+    QString error;
+    bool cancelled = false;
+    try {
+      loaded = std::make_shared<const Dataset>(readLog(file.toStdString(), o));
+    } catch (const LoadCancelled&) {
+      cancelled = true;
+    } catch (const std::exception& e) {
+      error = QString::fromStdString(e.what());
+    }
+    QMetaObject::invokeMethod(
+        this,
+        [this, job, loaded = std::move(loaded), error, cancelled]() mutable {
+          finishLoad(job, std::move(loaded), error, cancelled);
+        },
+        Qt::QueuedConnection);
+  });
+  loaders_.push_back(worker);
+  connect(worker, &QThread::finished, this, [this, worker] {
+    loaders_.erase(std::remove(loaders_.begin(), loaders_.end(), worker), loaders_.end());
+    worker->deleteLater();
+  });
+  loadBar_->setValue(0);
+  const QString name = loadBar_->fontMetrics().elidedText(QFileInfo(path).fileName(),
+                                                          Qt::ElideMiddle, loadBar_->width() / 2);
+  loadBar_->setFormat(tr("Loading %1: %p%").arg(name));
+  loadBar_->setVisible(true);
+  loadCancelButton_->setVisible(true);
+  cancelLoadAction_->setEnabled(true);
+  worker->start();
+}
+
+void MainWindow::cancelLoad() {
+  if (!load_) return;
+  const QString path = load_->path;
+  load_->cancel = true;
+  load_.reset();
+  hideLoadProgress();
+  statusBar()->showMessage(tr("Loading %1 cancelled").arg(QFileInfo(path).fileName()), 5000);
+  emit loadCancelled(path);
+}
+
+bool MainWindow::waitForLoad(int timeoutMs) {
+  QElapsedTimer clock;
+  clock.start();
+  while (load_ && (timeoutMs < 0 || clock.elapsed() < timeoutMs))
+    QCoreApplication::processEvents(QEventLoop::AllEvents | QEventLoop::WaitForMoreEvents, 50);
+  return !load_ && lastLoadSucceeded_;
+}
+
+void MainWindow::showLoadProgress(const std::shared_ptr<LoadJob>& job, int percent) {
+  if (job != load_) return;
+  loadBar_->setValue(percent);
+  emit loadProgress(percent);
+}
+
+void MainWindow::hideLoadProgress() {
+  loadBar_->setVisible(false);
+  loadCancelButton_->setVisible(false);
+  cancelLoadAction_->setEnabled(false);
+}
+
+void MainWindow::finishLoad(const std::shared_ptr<LoadJob>& job,
+                            std::shared_ptr<const Dataset> dataset, const QString& error,
+                            bool cancelled) {
+  if (job != load_) return;  // cancelled or replaced: its outcome no longer matters
+  load_.reset();
+  hideLoadProgress();
+  lastLoadSucceeded_ = false;
+  if (cancelled) {  // cancel flag set by someone holding the job (the window clears load_ first)
+    emit loadCancelled(job->path);
+    return;
   }
-  if (loaded->scans.empty())
-    return reportError(tr("Cannot open log"), path + tr(": the log holds no scans"), quiet);
-  data_ = std::move(loaded);
+  QString message = error;
+  if (message.isEmpty() && dataset->scans.empty())
+    message = job->path + tr(": the log holds no scans");
+  if (!message.isEmpty()) {
+    reportError(tr("Cannot open log"), message, job->quiet);
+    emit loadFailed(job->path, message);
+    return;
+  }
+  lastLoadSucceeded_ = true;
+  adoptLog(job->path, std::move(dataset));
+  emit loaded(job->path);
+}
+
+void MainWindow::adoptLog(const QString& path, std::shared_ptr<const Dataset> dataset) {
+  data_ = std::move(dataset);
   logPath_ = path;
   rememberRecent(path);
   QSettings().setValue("files/lastDirectory", QFileInfo(path).absolutePath());
@@ -518,7 +679,6 @@ bool MainWindow::openLog(const QString& path, bool quiet) {
   beamView_->setMaxRange(data_->ring.maxRange);
   showSettings();
   remap_->start(data_, cellSize_, settings_, timeline_->time());
-  return true;
 }
 
 bool MainWindow::openReference(const QString& path, bool quiet) {
@@ -700,9 +860,18 @@ void MainWindow::dropEvent(QDropEvent* event) {
 
 void MainWindow::openLogDialog() {
   const QString dir = QSettings().value("files/lastDirectory", QDir::homePath()).toString();
-  const QString path = QFileDialog::getOpenFileName(this, tr("Open Log"), dir,
-                                                    tr("SonarGrid logs (*.sglog);;All files (*)"));
+  const QString path = QFileDialog::getOpenFileName(
+      this, tr("Open Log"), dir,
+      tr("Sonar logs (*.sglog *.clf *.carmen *.log *.playerlog *.csv *.txt *.tsv);;"
+         "All files (*)"));
   if (!path.isEmpty()) openLog(path);
+}
+
+void MainWindow::importCsvDialog() {
+  const QString dir = QSettings().value("files/lastDirectory", QDir::homePath()).toString();
+  const QString path = QFileDialog::getOpenFileName(
+      this, tr("Import CSV"), dir, tr("CSV and text logs (*.csv *.txt *.tsv);;All files (*)"));
+  if (!path.isEmpty()) importCsv(path);
 }
 
 void MainWindow::openReferenceDialog() {

@@ -8,9 +8,11 @@
 #include <QStringList>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "grid_view.h"
 #include "sonargrid/dataset.h"
+#include "sonargrid/io/log_options.h"
 #include "sonargrid/mapper.h"
 #include "sonargrid/reference/reference_map.h"
 
@@ -19,6 +21,9 @@ class QActionGroup;
 class QComboBox;
 class QLabel;
 class QMenu;
+class QProgressBar;
+class QPushButton;
+class QThread;
 class QTimer;
 
 namespace sg::ui {
@@ -40,7 +45,24 @@ class MainWindow : public QMainWindow {
 
   // Each returns false after telling the user (a message box naming file:line) what was wrong; the
   // previous document then stays loaded. `quiet` reports on stderr instead (screenshots, tests).
+  // openLog loads on a worker thread: without `quiet` it returns true once the load has started
+  // (a CSV file first asks for its columns in the CsvImportDialog; false when the user cancels
+  // it); with `quiet` it waits for the load and returns whether it succeeded.
   bool openLog(const QString& path, bool quiet = false);
+  // Starts loading `path` with `options` on a worker thread, cancelling a load still running. The
+  // previous document stays shown until the new one is complete: loaded(), or loadFailed() /
+  // loadCancelled() leaving it untouched. Progress shows in the status bar (Cancel button, Esc).
+  void loadLog(const QString& path, const sg::LogOptions& options, bool quiet = false);
+  // Abandons the running load at once (loadCancelled); the worker stops at its next block.
+  void cancelLoad();
+  bool loading() const { return load_ != nullptr; }
+  // Blocks (running the event loop) until no load is running; true when the last one loaded.
+  // timeoutMs < 0 waits as long as the load takes.
+  bool waitForLoad(int timeoutMs = -1);
+  // Asks for a CSV file's columns (CsvImportDialog) and loads it; false when the user cancels.
+  bool importCsv(const QString& path);
+  const std::shared_ptr<const sg::Dataset>& dataset() const { return data_; }
+  const QString& logPath() const { return logPath_; }
   bool openReference(const QString& path, bool quiet = false);
 
   // Model, rule, parameters and pose: re-maps the log (not when they equal the settings of the
@@ -68,6 +90,13 @@ class MainWindow : public QMainWindow {
   // What the user last chose (model, rule, pose, cell size), as QSettings remembers it.
   static sg::MapperSettings lastSettings();
   static double lastCellSize();
+
+ signals:
+  // Percent of the file's bytes read by the running load (throttled: once per whole percent).
+  void loadProgress(int percent);
+  void loaded(const QString& path);
+  void loadFailed(const QString& path, const QString& message);
+  void loadCancelled(const QString& path);
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -100,7 +129,17 @@ class MainWindow : public QMainWindow {
   void showCurrentScan();
   bool reportError(const QString& title, const QString& message, bool quiet);
 
+  struct LoadJob;
+  // On the GUI thread, when a worker has finished `job` (superseded jobs are ignored).
+  void finishLoad(const std::shared_ptr<LoadJob>& job, std::shared_ptr<const sg::Dataset> dataset,
+                  const QString& error, bool cancelled);
+  // Makes `loaded` the document: timeline, views, re-map.
+  void adoptLog(const QString& path, std::shared_ptr<const sg::Dataset> dataset);
+  void showLoadProgress(const std::shared_ptr<LoadJob>& job, int percent);
+  void hideLoadProgress();
+
   void openLogDialog();
+  void importCsvDialog();
   void openReferenceDialog();
   void openExample();
   void exportViewPng();
@@ -123,6 +162,13 @@ class MainWindow : public QMainWindow {
   QLabel* hoverLabel_;
   QLabel* remapLabel_;
   QLabel* summary_ = nullptr;
+  QProgressBar* loadBar_ = nullptr;
+  QPushButton* loadCancelButton_ = nullptr;
+  QAction* cancelLoadAction_ = nullptr;
+  QAction* importCsvAction_ = nullptr;
+  std::shared_ptr<LoadJob> load_;  // the running load, if any
+  std::vector<QThread*> loaders_;  // workers still running (a cancelled one ends soon)
+  bool lastLoadSucceeded_ = false;
 
   std::shared_ptr<const sg::Dataset> data_;
   QString logPath_;
