@@ -6,7 +6,9 @@
 #include <QtTest>
 
 #include <QComboBox>
+#include <QSet>
 #include <QSlider>
+#include <QTemporaryDir>
 #include <cmath>
 
 #include "beam_model_view.h"
@@ -201,15 +203,25 @@ void TstBeamModelView::viewControls() {
 }
 
 void TstBeamModelView::snapshots() {
-  // Set SONARGRID_SNAPSHOT_DIR to write the pictures for a look (not a check).
-  const QString dir = qEnvironmentVariable("SONARGRID_SNAPSHOT_DIR");
-  if (dir.isEmpty()) QSKIP("SONARGRID_SNAPSHOT_DIR not set");
+  // The whole view at a projector's size, both models of paper 002 Fig. 6 side by side, saved as
+  // PNG. Set SONARGRID_SNAPSHOT_DIR to keep the pictures for a look; otherwise they go to a
+  // temporary folder. The checks: every picture saves, and the view's grab is a drawn figure (the
+  // palette's 16 levels, the background and the ink give well over 16 colours), not a blank
+  // widget.
+  QTemporaryDir scratch;
+  QString dir = qEnvironmentVariable("SONARGRID_SNAPSHOT_DIR");
+  if (dir.isEmpty()) dir = scratch.path();
   BeamModelView view;
   view.setSettings(applyPreset(*findPreset("paper002-fig6-parameterized")));
   view.setComparisonSettings(applyPreset(*findPreset("paper002-fig6-standard")));
   view.setRange(3.0);
   view.resize(1280, 900);
-  QVERIFY(view.grab().save(dir + "/beam_view_fig6.png"));
+  const QImage grabbed = view.grab().toImage();
+  QSet<QRgb> colours;
+  for (int y = 0; y < grabbed.height(); y += 3)
+    for (int x = 0; x < grabbed.width(); x += 3) colours.insert(grabbed.pixel(x, y));
+  QVERIFY2(colours.size() > 32, qPrintable(QString::number(colours.size())));
+  QVERIFY(grabbed.save(dir + "/beam_view_fig6.png"));
   QVERIFY(renderBeamModel({scene("hpf"), scene("himm")}, QSize(1200, 860))
               .save(dir + "/beam_hpf_himm.png"));
   BeamScene fig3 = scene("murphy", 5.0);
