@@ -54,8 +54,11 @@ ParameterSet averageParameters(const std::vector<ParameterSet>& sets,
     for (const auto& [name, value] : sets.at(i).values()) sums[name] += value;
   }
   ParameterSet out = sets.at(members.front());
-  for (const auto& [name, sum] : sums) {
-    const double mean = sum / static_cast<double>(members.size());
+  for (const auto& entry : sums) {
+    // (A named copy, not a structured binding: clang 14, the fuzz build's compiler, cannot
+    // capture bindings in a lambda.)
+    const std::string& name = entry.first;
+    const double mean = entry.second / static_cast<double>(members.size());
     // A parameter every member shares keeps its exact value (no rounding of a constant).
     const bool constant = std::all_of(members.begin(), members.end(), [&](std::size_t i) {
       return sets[i].get(name) == out.get(name);
