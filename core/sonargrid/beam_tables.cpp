@@ -1,9 +1,12 @@
 #include "sonargrid/beam_tables.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <thread>
 #include <utility>
+#include <vector>
 
 namespace sg {
 
@@ -14,23 +17,41 @@ BeamTables::BeamTables(double cellSize, int radiusCells, int subdivisions)
       tableSize_(static_cast<std::size_t>(side()) * static_cast<std::size_t>(side())) {
   // kPadding entries past the last table, so that a reader may load a few entries past a row.
   entries_.resize(tableSize_ * static_cast<std::size_t>(subdivisions_ * subdivisions_) + kPadding);
-  for (int qy = 0; qy < subdivisions_; ++qy) {
-    for (int qx = 0; qx < subdivisions_; ++qx) {
-      // Sensor at the centre of sub-cell (qx, qy) of cell (0, 0), in cell units.
-      const double sx = (qx + 0.5) / subdivisions_;
-      const double sy = (qy + 0.5) / subdivisions_;
-      Entry* t = entries_.data() + static_cast<std::size_t>(qy * subdivisions_ + qx) * tableSize_;
-      for (int dy = -radius_; dy <= radius_; ++dy) {
-        for (int dx = -radius_; dx <= radius_; ++dx) {
-          const double ex = (dx + 0.5 - sx) * cellSize_;
-          const double ey = (dy + 0.5 - sy) * cellSize_;
-          Entry& e = t[static_cast<std::size_t>((dy + radius_) * side() + dx + radius_)];
-          e.distance = static_cast<float>(std::hypot(ex, ey));
-          e.bearing = static_cast<float>(std::atan2(ey, ex));
-        }
+  auto fill = [this](int q) {
+    const int qx = q % subdivisions_, qy = q / subdivisions_;
+    // Sensor at the centre of sub-cell (qx, qy) of cell (0, 0), in cell units.
+    const double sx = (qx + 0.5) / subdivisions_;
+    const double sy = (qy + 0.5) / subdivisions_;
+    Entry* t = entries_.data() + static_cast<std::size_t>(q) * tableSize_;
+    for (int dy = -radius_; dy <= radius_; ++dy) {
+      for (int dx = -radius_; dx <= radius_; ++dx) {
+        const double ex = (dx + 0.5 - sx) * cellSize_;
+        const double ey = (dy + 0.5 - sy) * cellSize_;
+        Entry& e = t[static_cast<std::size_t>((dy + radius_) * side() + dx + radius_)];
+        e.distance = static_cast<float>(std::hypot(ex, ey));
+        e.bearing = static_cast<float>(std::atan2(ey, ex));
       }
     }
+  };
+  const int count = subdivisions_ * subdivisions_;
+  // A 10 m sonar at 5 cm cells is 16 tables of 449² entries, some 60 ms of atan2 on one core:
+  // the tables are filled by every core, each taking every n-th one.
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const int helpers = tableSize_ < 10000 ? 0 : static_cast<int>(std::min(cores, 4u)) - 1;
+  std::vector<std::thread> threads;
+  for (int h = 1; h <= helpers; ++h) {
+    threads.emplace_back([&fill, h, helpers, count] {
+      for (int q = h; q < count; q += helpers + 1) fill(q);
+    });
   }
+  for (int q = 0; q < count; q += helpers + 1) fill(q);
+  for (std::thread& t : threads) t.join();
+}
+
+int BeamTables::radiusFor(double cellSize, double reach) {
+  // Two cells of slack: the sensor may sit anywhere in its cell and cells are judged by centre.
+  const int needed = static_cast<int>(std::ceil(reach / cellSize)) + 2;
+  return (needed + kRadiusStep - 1) / kRadiusStep * kRadiusStep;
 }
 
 std::shared_ptr<const BeamTables> BeamTables::shared(double cellSize, double reach) {
@@ -39,8 +60,7 @@ std::shared_ptr<const BeamTables> BeamTables::shared(double cellSize, double rea
   // cell sizes is all a session uses; beyond that the entry with the smallest key goes.
   static std::map<std::pair<double, int>, std::shared_ptr<const BeamTables>> cache;
   constexpr std::size_t kMaxEntries = 4;
-  // Two cells of slack: the sensor may sit anywhere in its cell and cells are judged by centre.
-  const int radius = static_cast<int>(std::ceil(reach / cellSize)) + 2;
+  const int radius = radiusFor(cellSize, reach);
   std::lock_guard lock(mutex);
   // Any cached table of this cell size that reaches far enough serves.
   for (auto it = cache.lower_bound({cellSize, radius});

@@ -35,7 +35,15 @@ class BeamTables {
   }
 
   // Tables for `cellSize` that reach at least `reach` metres, shared between mappers (thread-safe).
+  // Their radius is radiusFor(cellSize, reach) or more: a cached table that reaches further serves.
   static std::shared_ptr<const BeamTables> shared(double cellSize, double reach);
+
+  // The radius shared() builds for a reach: ceil(reach / cellSize) + 2 cells, rounded up to a
+  // multiple of kRadiusStep. Sliders that move the reach (ε, P3, a tolerance, a maximum range)
+  // would otherwise rebuild the tables, 60 ms at 5 cm cells and a 10 m sonar, on every other step;
+  // with the step, a slider's whole range needs one to three builds (1.6 m per step at 5 cm).
+  static constexpr int kRadiusStep = 32;
+  static int radiusFor(double cellSize, double reach);
 
  private:
   double cellSize_;

@@ -202,6 +202,7 @@ class TstGeometry : public QObject {
   void beamTableEntries_data();
   void beamTableEntries();
   void beamTablesShared();
+  void beamTablesFilledByEveryCore();
 
   void coneTiny_data();
   void coneTiny();
@@ -896,32 +897,64 @@ void TstGeometry::beamTableEntries() {
 }
 
 void TstGeometry::beamTablesShared() {
-  // 0.0625 m cells (exact in binary) and 1 m: radius ceil(1 / 0.0625) + 2 = 16 + 2 = 18.
+  // 0.0625 m cells (exact in binary) and 1 m: ceil(1 / 0.0625) + 2 = 16 + 2 = 18 cells, rounded up
+  // to the next multiple of kRadiusStep = 32: 32.
+  QCOMPARE(sg::BeamTables::kRadiusStep, 32);
+  QCOMPARE(sg::BeamTables::radiusFor(0.0625, 1.0), 32);
   const std::shared_ptr<const sg::BeamTables> a = sg::BeamTables::shared(0.0625, 1.0);
   QVERIFY(a != nullptr);
   QCOMPARE(a->cellSize(), 0.0625);
-  QCOMPARE(a->radius(), 18);
+  QCOMPARE(a->radius(), 32);
   // The same cell size and the same or a shorter reach: the same object.
   QCOMPARE(sg::BeamTables::shared(0.0625, 1.0), a);
   QCOMPARE(sg::BeamTables::shared(0.0625, 0.5), a);
   QCOMPARE(sg::BeamTables::shared(0.0625, 0.01), a);
+  // A longer reach inside the same step, as a slider moving the reach gives: ceil(1.875 / 0.0625)
+  // + 2 = 32 still fits, so no new table (the reason for the step).
+  QCOMPARE(sg::BeamTables::radiusFor(0.0625, 1.875), 32);
+  QCOMPARE(sg::BeamTables::shared(0.0625, 1.875), a);
 
-  // A longer reach needs a bigger table: ceil(1.5 / 0.0625) + 2 = 24 + 2 = 26, a new object, which
-  // then serves its own reach again.
-  const std::shared_ptr<const sg::BeamTables> b = sg::BeamTables::shared(0.0625, 1.5);
+  // Past the step a bigger table is built: ceil(1.9 / 0.0625) + 2 = 31 + 2 = 33 → 64. It then
+  // serves its own reach again.
+  QCOMPARE(sg::BeamTables::radiusFor(0.0625, 1.9), 64);
+  const std::shared_ptr<const sg::BeamTables> b = sg::BeamTables::shared(0.0625, 1.9);
   QVERIFY(b != a);
-  QCOMPARE(b->radius(), 26);
-  QCOMPARE(sg::BeamTables::shared(0.0625, 1.5), b);
+  QCOMPARE(b->radius(), 64);
+  QCOMPARE(sg::BeamTables::shared(0.0625, 1.9), b);
   // Any cached table of the cell size that reaches far enough serves a shorter reach: here the
-  // smaller one, 18 >= ceil(0.5 / 0.0625) + 2 = 10.
+  // smaller one, 32 >= 32.
   QCOMPARE(sg::BeamTables::shared(0.0625, 0.5), a);
 
-  // Another cell size never shares: 1 / 0.03125 = 32, radius 34.
+  // Another cell size never shares: 1 / 0.03125 = 32, + 2 = 34 → 64.
   const std::shared_ptr<const sg::BeamTables> c = sg::BeamTables::shared(0.03125, 1.0);
   QVERIFY(c != a && c != b);
   QCOMPARE(c->cellSize(), 0.03125);
-  QCOMPARE(c->radius(), 34);
+  QCOMPARE(c->radius(), 64);
   QCOMPARE(sg::BeamTables::shared(0.03125, 1.0), c);
+}
+
+void TstGeometry::beamTablesFilledByEveryCore() {
+  // Big enough (side 129² > 10 000 entries) that the constructor splits the 16 tables between
+  // threads: every entry of every table must still be the formula's value, the same as a table
+  // small enough to be filled by one thread gives for the cells both hold.
+  const sg::BeamTables big(0.05, 64);
+  const sg::BeamTables small(0.05, 10);
+  QVERIFY(static_cast<long>(big.side()) * big.side() >= 10000);
+  QVERIFY(static_cast<long>(small.side()) * small.side() < 10000);
+  for (int qy = 0; qy < 4; ++qy)
+    for (int qx = 0; qx < 4; ++qx)
+      for (int dy = -10; dy <= 10; ++dy)
+        for (int dx = -10; dx <= 10; ++dx) {
+          const sg::BeamTables::Entry e = big.table(qx, qy)[(dy + 64) * big.side() + dx + 64];
+          const sg::BeamTables::Entry f = small.table(qx, qy)[(dy + 10) * small.side() + dx + 10];
+          QCOMPARE(e.distance, f.distance);
+          QCOMPARE(e.bearing, f.bearing);
+        }
+  // And one far entry by hand: sub-cell (3, 0) centre at (0.875, 0.125) cells; cell (64, -64) has
+  // its centre at (64.5, -63.5); offset (63.625, -63.625) cells, 45° below the x axis.
+  const sg::BeamTables::Entry far = big.table(3, 0)[(-64 + 64) * big.side() + 64 + 64];
+  QVERIFY(std::abs(far.distance - 63.625 * 0.05 * std::sqrt(2.0)) < 1e-6);
+  QVERIFY(std::abs(far.bearing + std::numbers::pi / 4) < 1e-6);
 }
 
 // ---------------------------------------------------------------------------------------------
