@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -58,6 +59,20 @@ struct UninitialisedAllocator : std::allocator<T> {
 struct Footprint {
   std::vector<CellEvidence, UninitialisedAllocator<CellEvidence>> cells;
   void clear() { cells.clear(); }
+};
+
+// The grid rows a footprint is restricted to: those of [begin, end) in stripes of `stripe` rows,
+// every `period`-th stripe starting with stripe number `phase` (all rows by default). The mapper
+// gives each of its threads every n-th stripe of the grid (mapper.cpp).
+struct RowWindow {
+  int begin = 0;
+  int end = std::numeric_limits<int>::max() / 2;  // room for arithmetic on it
+  int stripe = 1;
+  int period = 1;
+  int phase = 0;
+  bool contains(int row) const {
+    return row >= begin && row < end && (period == 1 || (row / stripe) % period == phase);
+  }
 };
 
 // One reading placed in the world.

@@ -1,8 +1,10 @@
 #include "sonargrid/mapper.h"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 #include <thread>
+#include <utility>
 
 namespace sg {
 
@@ -72,9 +74,7 @@ Footprint Mapper::footprintOf(const Pose2D& robot, const Reading& reading) const
   return fp;
 }
 
-void Mapper::applyFootprint(const Footprint& footprint) {
-  rule_->apply(footprint);
-  if (observer_) observer_->observe(footprint);
+void Mapper::markObserved(const Footprint& footprint) {
   // Four at a time: the loop is a load and a store per cell, and its own overhead was a third.
   const CellEvidence* c = footprint.cells.data();
   const CellEvidence* const end = c + footprint.cells.size();
@@ -86,6 +86,12 @@ void Mapper::applyFootprint(const Footprint& footprint) {
     observed[c[3].cell] = 1;
   }
   for (; c != end; ++c) observed[c->cell] = 1;
+}
+
+void Mapper::applyFootprint(const Footprint& footprint) {
+  rule_->apply(footprint);
+  if (observer_) observer_->observe(footprint);
+  markObserved(footprint);
   ++readings_;
 }
 
@@ -126,6 +132,8 @@ constexpr std::size_t kParallelMinimum = 4096;
 // that their buffers stay in cache.
 constexpr std::size_t kSlots = 64;
 constexpr std::int64_t kEmptySlot = -1;
+// The height of the stripes of rows the threads share out (integrateBands).
+constexpr int kStripeRows = 8;
 
 // Waits until `value` differs from `old`. A footprint takes some 10 µs, so the wait is usually
 // over within a short spin; sleeping at once would cost a futex call and a wake-up per footprint
@@ -170,6 +178,9 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
     }
     return true;
   }
+  // Stripes of rows per thread, unless an observer must see whole footprints in order or the
+  // model's footprints are too cheap to be worth cutting up (HIMM's axis line): then the pipeline.
+  if (!observer_ && model_->rasterisesRows()) return integrateBands(beams, cancel, workers + 1);
 
   Pipeline p;
   auto compute = [&](std::size_t i) {
@@ -241,6 +252,142 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
   return completed;
 }
 
+bool Mapper::integrateBands(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
+                            unsigned threads) {
+  // Thread k takes every `threads`-th stripe of kStripeRows grid rows, from stripe k. It reads
+  // every beam but rasterises only its own rows, and applies them to cells no other thread has:
+  // each cell still sees the readings in log order, so the grid is bit-identical to the serial
+  // one, and no footprint is handed from one core to another (that traffic, 16 bytes a cell, cost
+  // the ordered pipeline most of its second core). Thin interleaved stripes give every thread a
+  // like share of nearly every footprint, wherever the robot is.
+  const std::size_t n = beams.size();
+  const bool totals = rule_->needsTotals();
+  std::vector<RowWindow> bands(threads);
+  for (unsigned k = 0; k < threads; ++k) {
+    bands[k].stripe = kStripeRows;
+    bands[k].period = static_cast<int>(threads);
+    bands[k].phase = static_cast<int>(k);
+  }
+
+  // The threads in step (rules with totals, below).
+  struct alignas(64) Band {
+    // Parts 0 .. posted − 1 have their total in `partial`; kHalted is set when the run stops.
+    std::atomic<std::size_t> posted{0};
+    std::vector<std::int64_t> partial;
+  };
+  constexpr std::size_t kHalted = std::size_t{1} << (std::numeric_limits<std::size_t>::digits - 1);
+  std::vector<Band> state;
+
+  std::atomic<bool> stop{false};
+  std::exception_ptr failure;
+  std::atomic<std::size_t> done{n};  // the fewest readings any band has applied
+  auto halt = [&](std::size_t applied) {
+    for (std::size_t d = done.load(); applied < d && !done.compare_exchange_weak(d, applied);) {
+    }
+    stop.store(true);
+    // A thread waiting for another's part wakes on the change of its count, and sees kHalted.
+    for (Band& b : state) {
+      b.posted.fetch_or(kHalted);
+      b.posted.notify_all();
+    }
+  };
+  auto stopping = [&](std::size_t i) {
+    return stop.load(std::memory_order_relaxed) ||
+           (cancel && i % kCancelStride == 0 && cancel->load(std::memory_order_relaxed));
+  };
+  auto runThreads = [&](unsigned count, auto work) {
+    auto guarded = [&](unsigned k) {
+      try {
+        work(k);
+      } catch (...) {
+        if (!stop.exchange(true)) failure = std::current_exception();
+        halt(0);
+      }
+    };
+    std::vector<std::thread> helpers;
+    for (unsigned k = 1; k < count; ++k) helpers.emplace_back(guarded, k);
+    guarded(0);
+    for (std::thread& t : helpers) t.join();
+  };
+
+  if (!totals) {
+    runThreads(threads, [&](unsigned k) {
+      Footprint fp;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (stopping(i)) return halt(i);
+        fp.clear();
+        model_->footprintRows(beams[i], grid_, *tables_, bands[k], fp);
+        rule_->apply(fp);
+        markObserved(fp);
+      }
+    });
+  } else {
+    // In step: thread k computes its part of footprint i, posts the part's total, and keeps the
+    // part in a ring of kSlots until every thread has posted i; then it applies it with the sum.
+    // Only the totals cross between cores. (A thread kSlots ahead waits; two threads cannot both
+    // wait, as each would have to be kSlots ahead of the other.)
+    state = std::vector<Band>(bands.size());
+    for (Band& b : state) b.partial.assign(n, 0);
+    enum class Part { Ready, NotYet, Halted };
+    auto posted = [&](std::size_t i) {
+      for (const Band& b : state) {
+        const std::size_t p = b.posted.load(std::memory_order_acquire);
+        if (p & kHalted) return Part::Halted;
+        if (p <= i) return Part::NotYet;
+      }
+      return Part::Ready;
+    };
+    // Waits until every thread has posted part i; false when the run stops.
+    auto waitPosted = [&](std::size_t i) {
+      for (Band& b : state) {
+        for (std::size_t p = b.posted.load(std::memory_order_acquire); p <= i;
+             p = b.posted.load(std::memory_order_acquire)) {
+          waitForChange(b.posted, p);
+        }
+      }
+      return posted(i) == Part::Ready;
+    };
+    runThreads(threads, [&](unsigned k) {
+      Band& mine = state[k];
+      std::vector<Footprint> ring(kSlots);
+      std::size_t applied = 0;
+      auto applyNext = [&] {
+        FootprintTotals sum;
+        for (const Band& b : state) sum.occupied += b.partial[applied];
+        const Footprint& fp = ring[applied % kSlots];
+        rule_->applyPart(fp, sum);
+        markObserved(fp);
+        ++applied;
+      };
+      for (std::size_t i = 0; i < n; ++i) {
+        if (stopping(i)) return halt(applied);
+        while (i >= applied + kSlots) {
+          if (!waitPosted(applied)) return halt(applied);
+          applyNext();
+        }
+        Footprint& fp = ring[i % kSlots];
+        fp.clear();
+        model_->footprintRows(beams[i], grid_, *tables_, bands[k], fp);
+        mine.partial[i] = occupiedFixedPoint(fp);
+        mine.posted.fetch_add(1, std::memory_order_release);  // keeps kHalted
+        mine.posted.notify_all();
+        // Apply what every thread has posted, without waiting.
+        for (Part p = posted(applied); applied <= i && p != Part::NotYet; p = posted(applied)) {
+          if (p == Part::Halted) return halt(applied);
+          applyNext();
+        }
+      }
+      while (applied < n) {
+        if (!waitPosted(applied)) return halt(applied);
+        applyNext();
+      }
+    });
+  }
+  if (failure) std::rethrow_exception(failure);
+  readings_ += done;
+  return done == n;
+}
+
 OccupancyMap Mapper::snapshot() const {
   OccupancyMap m;
   m.spec = grid_;
@@ -252,12 +399,7 @@ OccupancyMap Mapper::snapshot() const {
   m.level.resize(n);
   m.filled.resize(n);
   m.observed = observed_;
-  for (std::size_t i = 0; i < n; ++i) {
-    m.probability[i] = rule_->occupancy(i);
-    m.native[i] = rule_->native(i);
-    m.level[i] = rule_->level(i);
-    m.filled[i] = rule_->filled(i) ? 1 : 0;
-  }
+  rule_->writeLayers(m);
   return m;
 }
 

@@ -66,9 +66,11 @@ class Mapper {
   void integrate(const Scan& scan, double until = std::numeric_limits<double>::infinity());
 
   // Batch mapping: resets, then integrates every scan (readings up to `until`). Checks `cancel`
-  // every few hundred readings; returns false when it was cancelled (the grid then holds a prefix
-  // of the log). Footprints are computed on several threads and applied in log order, so the
-  // result is bit-identical to integrate() scan by scan.
+  // every few hundred readings; returns false when it was cancelled (the grid is then unfinished:
+  // map again or reset before using it). A large log is mapped on several threads, in bands of
+  // grid rows (or, with an observer, footprints computed ahead and applied in log order); every
+  // cell still sees the readings in log order, so the result is bit-identical to integrate() scan
+  // by scan.
   bool mapDataset(const Dataset& dataset, double until = std::numeric_limits<double>::infinity(),
                   const std::atomic<bool>* cancel = nullptr);
 
@@ -84,7 +86,10 @@ class Mapper {
  private:
   Beam beamOf(const Pose2D& robot, const Reading& reading) const;
   void applyFootprint(const Footprint& footprint);
+  void markObserved(const Footprint& footprint);
   bool integrateBeams(const std::vector<Beam>& beams, const std::atomic<bool>* cancel);
+  bool integrateBands(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
+                      unsigned threads);
 
   SonarRing ring_;
   GridSpec grid_;

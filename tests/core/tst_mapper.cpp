@@ -2,8 +2,10 @@
 // results are deterministic, and the errors a user can cause are reported.
 
 #include <QtTest>
+#include <chrono>
 #include <cmath>
 #include <set>
+#include <thread>
 
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/mapper.h"
@@ -74,6 +76,8 @@ class TstMapper : public QObject {
   void parallelBatchEqualsIncremental();
   void parallelIsRepeatable();
   void cancelMidRun();
+  void cancelStripes();
+  void stripesForEveryRuleKind();
   void untilIsAPrefix();
   void deterministic();
   void poseSource();
@@ -191,6 +195,67 @@ void TstMapper::cancelMidRun() {
   Mapper fresh(d.ring, grid, s);
   fresh.mapDataset(d);
   QVERIFY(sameLayers(m.snapshot(), fresh.snapshot()));
+}
+
+void TstMapper::cancelStripes() {
+  // Without an observer a large log is mapped in stripes of rows, one set per thread. Cancelled
+  // before it starts: nothing is integrated. Cancelled from another thread while it runs (the flag
+  // may come after the end on a fast machine): either way the same mapper then maps the whole log
+  // exactly as a fresh one.
+  const Dataset& d = room();
+  const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
+  for (const char* rule : {"bayes", "addition"}) {  // addition normalises: threads in step
+    MapperSettings s;
+    s.model = "hpf";
+    s.rule = rule;
+    Mapper m(d.ring, grid, s);
+    std::atomic<bool> stop{true};
+    QVERIFY(!m.mapDataset(d, std::numeric_limits<double>::infinity(), &stop));
+    QCOMPARE(m.readingsIntegrated(), std::size_t{0});
+    stop.store(false);
+    std::thread canceller([&stop] {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      stop.store(true);
+    });
+    const bool finished = m.mapDataset(d, std::numeric_limits<double>::infinity(), &stop);
+    canceller.join();
+    QVERIFY(finished ? m.readingsIntegrated() == d.readingCount()
+                     : m.readingsIntegrated() < d.readingCount());
+    stop.store(false);
+    QVERIFY(m.mapDataset(d, std::numeric_limits<double>::infinity(), &stop));
+    Mapper fresh(d.ring, grid, s);
+    for (const Scan& scan : d.scans) fresh.integrate(scan);
+    QVERIFY(sameLayers(m.snapshot(), fresh.snapshot()));
+  }
+}
+
+void TstMapper::stripesForEveryRuleKind() {
+  // The three ways a large log is mapped on several threads, each bit-identical to one thread
+  // scan by scan: stripes of rows (Bayes), stripes in step sharing each footprint's total
+  // (addition with normalisation, which scales a footprint by its sum), and, for HIMM's axis line
+  // (too cheap to cut into rows) or with an observer, the ordered pipeline.
+  const Dataset& d = room();
+  const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
+  struct Case {
+    const char* model;
+    const char* rule;
+    double normalise;
+  };
+  for (const Case& c :
+       {Case{"parameterized", "bayes", -1}, Case{"hpf", "addition", 1}, Case{"hpf", "addition", 0},
+        Case{"murphy", "addition", 1}, Case{"himm", "himm", -1}}) {
+    MapperSettings s;
+    s.model = c.model;
+    s.rule = c.rule;
+    s.parameters = defaultParameters(s.model, s.rule);
+    if (c.normalise >= 0) s.parameters.set("normalise", c.normalise);
+    Mapper batch(d.ring, grid, s), incremental(d.ring, grid, s);
+    QVERIFY(batch.mapDataset(d));
+    for (const Scan& scan : d.scans) incremental.integrate(scan);
+    const QByteArray what = QByteArray(c.model) + " x " + c.rule;
+    QVERIFY2(sameLayers(batch.snapshot(), incremental.snapshot()), what);
+    QVERIFY2(batch.snapshot().filledCount() > 100, what);
+  }
 }
 
 void TstMapper::untilIsAPrefix() {

@@ -3,6 +3,7 @@
 
 #include <QtTest>
 #include <cmath>
+#include <cstring>
 
 #include "sonargrid/models/cone_raster.h"
 #include "sonargrid/models/sensor_model.h"
@@ -38,6 +39,7 @@ class TstModels : public QObject {
   void himmAxis();
   void evidenceAndProbabilityAgree();
   void footprintMatchesEvaluate();
+  void footprintRowsAreItsRows();
   void declarationsAreComplete();
 };
 
@@ -294,6 +296,64 @@ void TstModels::footprintMatchesEvaluate() {
     }
     QVERIFY(compared > 10000);
   }
+}
+
+void TstModels::footprintRowsAreItsRows() {
+  // footprintRows() is footprint() with only the window's rows kept, in the same order, with the
+  // same values bit for bit (the mapper's threads each take a window and must together write what
+  // one thread writes). Windows: a block of rows, the mapper's stripes (8 rows, every other one,
+  // both phases) and an odd stripe pattern; the cone models rasterise only those rows, HIMM keeps
+  // them from its whole footprint. The phases of one pattern cover every cell exactly once.
+  GridSpec grid;
+  grid.cellSize = 0.05;
+  grid.width = 240;
+  grid.height = 200;
+  for (const std::string name : {"hpf", "konolige", "murphy", "parameterized", "himm"}) {
+    auto m = model(name.c_str(), {{"no_echo", 1.0}});
+    QCOMPARE(m->rasterisesRows(), name != "himm");
+    const double maxRange = 5.0;
+    const auto tables = BeamTables::shared(grid.cellSize, m->reach(maxRange));
+    for (const double heading : {0.0, 1.5707963, 2.9, -2.2}) {
+      for (const double range : {0.7, 3.41, kNoEcho}) {
+        Beam beam;
+        beam.sensor = Pose2D(6.013 + 0.3 * heading, 5.031 - 0.1 * heading, heading);
+        beam.range = range;
+        beam.maxRange = maxRange;
+        Footprint whole;
+        m->footprint(beam, grid, *tables, whole);
+        QVERIFY(!whole.cells.empty());
+        const QByteArray where = QByteArray::fromStdString(name) + " heading " +
+                                 QByteArray::number(heading) + " range " +
+                                 QByteArray::number(range);
+        // Whether the window's part is exactly the whole's cells in those rows; and its size.
+        auto part = [&](const RowWindow& w) {
+          Footprint got;
+          m->footprintRows(beam, grid, *tables, w, got);
+          std::vector<CellEvidence> want;
+          for (const CellEvidence& c : whole.cells)
+            if (w.contains(static_cast<int>(c.cell) / grid.width)) want.push_back(c);
+          const bool same =
+              got.cells.size() == want.size() &&
+              std::memcmp(got.cells.data(), want.data(), want.size() * sizeof(CellEvidence)) == 0;
+          return std::pair{same, got.cells.size()};
+        };
+        QVERIFY2(part(RowWindow{95, 110}).first, where);
+        for (const auto& [stripe, period] : {std::pair{8, 2}, std::pair{3, 3}}) {
+          std::size_t covered = 0;
+          for (int phase = 0; phase < period; ++phase) {
+            const auto [same, size] = part(RowWindow{0, grid.height, stripe, period, phase});
+            QVERIFY2(same, where + " phase " + QByteArray::number(phase));
+            covered += size;
+          }
+          QCOMPARE(covered, whole.cells.size());
+        }
+      }
+    }
+  }
+  // The window's rule by hand: stripes of 8 rows, every other one, phase 1: rows 8–15, 24–31, ...
+  const RowWindow w{0, 100, 8, 2, 1};
+  QVERIFY(!w.contains(7) && w.contains(8) && w.contains(15) && !w.contains(16) && w.contains(24));
+  QVERIFY(!w.contains(-1) && !w.contains(100));
 }
 
 void TstModels::declarationsAreComplete() {

@@ -49,6 +49,7 @@ class TstRules : public QObject {
  private slots:
   void addition();
   void additionPaper001Combine();
+  void additionInParts();
   void bayesPaper001();
   void bayesRecursive();
   void logUpdate();
@@ -90,6 +91,28 @@ void TstRules::additionPaper001Combine() {
   NEAR(r->occupancy(0), 0.25);  // Emp = 0.75 → 1 − 0.75
   NEAR(r->occupancy(1), 1.0);
   NEAR(r->occupancy(2), 0.5);
+}
+
+void TstRules::additionInParts() {
+  // The mapper may give a rule a footprint in parts (rows on different threads) with the totals of
+  // the whole footprint: applying the parts must give what applying the whole gives, bit for bit.
+  // Occupied 0.6, 0.2 and 0.2 sum to 1.0 (in units of 2^-40: each value rounds down to an integer
+  // count of them, and the counts add exactly), so the scale is 1 and cell 1 gets 0.6.
+  const Footprint whole = fp({occupied(0, 0.2), occupied(1, 0.6), empty(2, 0.3), occupied(3, 0.2)});
+  const std::int64_t total = occupiedFixedPoint(whole);
+  auto units = [](float v) { return static_cast<std::int64_t>(static_cast<double>(v) * 0x1p40); };
+  QCOMPARE(total, units(0.2f) + units(0.6f) + units(0.2f));
+  NEAR(FootprintTotals{total}.occupiedSum(), 1.0);
+  auto a = rule("addition", {}, 4), b = rule("addition", {}, 4);
+  QVERIFY(a->needsTotals());
+  QVERIFY(!rule("addition", {{"normalise", 0}})->needsTotals());
+  QVERIFY(!rule("bayes")->needsTotals());
+  a->apply(whole);
+  b->applyPart(fp({occupied(0, 0.2), occupied(1, 0.6)}), FootprintTotals{total});
+  b->applyPart(fp({empty(2, 0.3), occupied(3, 0.2)}), FootprintTotals{total});
+  for (std::size_t i = 0; i < 4; ++i) QCOMPARE(b->native(i), a->native(i));
+  NEAR(a->native(1), 0.6);
+  NEAR(a->native(2), -0.3);
 }
 
 void TstRules::bayesPaper001() {

@@ -110,7 +110,7 @@ CellEvidence* coneRow(const Shape& shape, const ConeRow& row, CellEvidence* dst)
 // The footprint of one reading: the cone's rows, evaluated in lanes.
 template <class Shape>
 void coneFootprint(const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid,
-                   const BeamTables& tables, Footprint& out) {
+                   const BeamTables& tables, Footprint& out, RowWindow window = {}) {
   if (!pb.active) return;
   const std::size_t start = out.cells.size();
   CellEvidence* dst = nullptr;
@@ -122,7 +122,7 @@ void coneFootprint(const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& 
         out.cells.resize(start + bound + lanes::kWidth - 1);
         dst = out.cells.data() + start;
       },
-      [&](const ConeRow& row) { dst = coneRow(pb.shape, row, dst); });
+      [&](const ConeRow& row) { dst = coneRow(pb.shape, row, dst); }, window);
   out.cells.resize(dst ? static_cast<std::size_t>(dst - out.cells.data()) : start);
 }
 
@@ -150,6 +150,12 @@ class ConeModel : public SensorModel {
                  Footprint& out) const final {
     coneFootprint(self().template prepare<float>(beam.range, beam.maxRange), beam, grid, tables,
                   out);
+  }
+  bool rasterisesRows() const final { return true; }
+  void footprintRows(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+                     RowWindow window, Footprint& out) const final {
+    coneFootprint(self().template prepare<float>(beam.range, beam.maxRange), beam, grid, tables,
+                  out, window);
   }
 
  private:

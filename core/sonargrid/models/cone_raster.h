@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sonargrid/beam_tables.h"
+#include "sonargrid/footprint.h"
 #include "sonargrid/grid_spec.h"
 #include "sonargrid/pose.h"
 
@@ -74,11 +75,12 @@ struct ConeRow {
 // row(const ConeRow&) for every row of grid cells whose centres lie within `reach` metres of the
 // sensor and within `halfAngle` radians of its axis (halfAngle < 90°), judged by the BeamTables
 // entry of each cell: distance <= (float)reach and |bearing − heading| <= halfAngle after one 2π
-// correction. Rows come from the lowest world y. Before the first row, reserve(bound) is told how
-// many cells there can be at most.
+// correction, and only rows inside `window`. Rows come from the lowest world y. Before the first
+// row, reserve(bound) is told how many cells there can be at most.
 template <class Reserve, class RowFn>
 void forEachConeRow(const Pose2D& sensor, double reach, double halfAngle, const GridSpec& grid,
-                    const BeamTables& tables, Reserve&& reserve, RowFn&& row) {
+                    const BeamTables& tables, Reserve&& reserve, RowFn&& row,
+                    RowWindow window = {}) {
   const double c = grid.cellSize;
   const double u = (sensor.x() - grid.origin.x()) / c;
   const double v = (sensor.y() - grid.origin.y()) / c;
@@ -112,14 +114,16 @@ void forEachConeRow(const Pose2D& sensor, double reach, double halfAngle, const 
   const double top = covers(kHalfPi) ? R : std::max({0.0, R * d1y, R * d2y});
   const double bottom = covers(-kHalfPi) ? -R : std::min({0.0, R * d1y, R * d2y});
   const int r = tables.radius();
-  const int dy0 = std::max({-r, detail::floorToInt(ay - 0.5 + bottom - kSlack) - 1, -iv});
-  const int dy1 =
-      std::min({r, detail::ceilToInt(ay - 0.5 + top + kSlack) + 1, grid.height - 1 - iv});
+  const int dy0 =
+      std::max({-r, detail::floorToInt(ay - 0.5 + bottom - kSlack) - 1, -iv, window.begin - iv});
+  const int dy1 = std::min({r, detail::ceilToInt(ay - 0.5 + top + kSlack) + 1, grid.height - 1 - iv,
+                            window.end - 1 - iv});
   // Per thread, so workers never share it; row must not call forEachConeRow itself.
   thread_local std::vector<ConeSpan> spans;
   spans.clear();
   std::size_t bound = 0;
   for (int dy = dy0; dy <= dy1; ++dy) {
+    if (!window.contains(iv + dy)) continue;
     const double y = dy + 0.5 - ay;  // row of cell centres, relative to the apex
     const double disk = (R + kSlack) * (R + kSlack) - y * y;
     if (disk < 0.0) continue;
@@ -145,6 +149,15 @@ void forEachConeRow(const Pose2D& sensor, double reach, double halfAngle, const 
   auto accepts = [&](const BeamTables::Entry& e) {
     return e.distance <= reachF && std::abs(detail::offAxis(e.bearing, h)) <= halfAngle;
   };
+  // The table is megabytes and a reading touches a few thousand bytes of it, scattered over its
+  // rows: ask for all of them before the first is needed, so the misses overlap instead of
+  // stalling the row loop one after another.
+  for (const ConeSpan& span : spans) {
+    const BeamTables::Entry* entries = t + (span.dy + r) * side + r;
+    const char* first = reinterpret_cast<const char*>(entries + span.dx0);
+    const char* last = reinterpret_cast<const char*>(entries + span.dx1);
+    for (const char* line = first; line <= last + 63; line += 64) __builtin_prefetch(line);
+  }
   for (const ConeSpan& span : spans) {
     const BeamTables::Entry* entries = t + (span.dy + r) * side + r;
     // The cone meets a row of cell centres in one interval: the accepted cells of the span are

@@ -50,4 +50,16 @@ const ModelInfo& sensorModelInfo(const std::string& name) {
   throw std::invalid_argument("unknown sensor model '" + name + "'");
 }
 
+void SensorModel::footprintRows(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+                                RowWindow window, Footprint& out) const {
+  const std::size_t start = out.cells.size();
+  footprint(beam, grid, tables, out);
+  const auto width = static_cast<std::uint32_t>(grid.width);
+  auto kept = out.cells.begin() + static_cast<std::ptrdiff_t>(start);
+  for (auto c = kept; c != out.cells.end(); ++c) {
+    if (window.contains(static_cast<int>(c->cell / width))) *kept++ = *c;
+  }
+  out.cells.erase(kept, out.cells.end());
+}
+
 }  // namespace sg

@@ -49,6 +49,13 @@ class SensorModel {
   // Appends every cell the reading updates to `out`, in a fixed order, each cell at most once.
   virtual void footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
                          Footprint& out) const = 0;
+  // The cells of footprint() that lie in the grid rows of `window`, in the same order. This default
+  // computes the whole footprint and keeps those rows; the cone models rasterise only the window.
+  virtual void footprintRows(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+                             RowWindow window, Footprint& out) const;
+  // Whether footprintRows() costs about its share of footprint() (it rasterises only the window),
+  // so that the mapper gains by splitting the rows between threads.
+  virtual bool rasterisesRows() const { return false; }
 };
 
 // The registry: one place that knows every model.

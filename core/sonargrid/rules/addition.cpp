@@ -30,13 +30,15 @@ void AdditionRule::reset(std::size_t cells) {
 }
 
 void AdditionRule::apply(const Footprint& fp) {
+  FootprintTotals totals;
+  if (normalise_) totals.occupied = occupiedFixedPoint(fp);
+  applyPart(fp, totals);
+}
+
+void AdditionRule::applyPart(const Footprint& fp, const FootprintTotals& totals) {
   // The echo came from one cell of the arc, so the arc's occupied evidence shares a total of one.
   double scale = 1.0;
-  if (normalise_) {
-    double sum = 0.0;
-    for (const CellEvidence& c : fp.cells) sum += c.occupied;
-    if (sum > 0.0) scale = 1.0 / sum;
-  }
+  if (normalise_ && totals.occupied > 0) scale = 1.0 / totals.occupiedSum();
   for (const CellEvidence& c : fp.cells) {
     if (c.empty > 0.0) {
       double& e = emp_[c.cell];
@@ -64,6 +66,10 @@ double AdditionRule::native(std::size_t i) const {
 double AdditionRule::occupancy(std::size_t i) const {
   const double v = native(i);
   return paper001Combine_ ? v : 0.5 * (1.0 + v);
+}
+
+void AdditionRule::writeLayers(OccupancyMap& map) const {
+  writeLayersOf(*this, map);
 }
 
 }  // namespace sg

@@ -57,4 +57,8 @@ void BayesRule::apply(const Footprint& fp) {
   }
 }
 
+void BayesRule::writeLayers(OccupancyMap& map) const {
+  writeLayersOf(*this, map);
+}
+
 }  // namespace sg

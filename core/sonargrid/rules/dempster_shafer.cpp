@@ -79,4 +79,8 @@ double DempsterShaferRule::occupancy(std::size_t i) const {
   return mass_[i].occ + 0.5 * mu;
 }
 
+void DempsterShaferRule::writeLayers(OccupancyMap& map) const {
+  writeLayersOf(*this, map);
+}
+
 }  // namespace sg

@@ -44,4 +44,8 @@ void HimmRule::apply(const Footprint& fp) {
   }
 }
 
+void HimmRule::writeLayers(OccupancyMap& map) const {
+  writeLayersOf(*this, map);
+}
+
 }  // namespace sg

@@ -56,4 +56,8 @@ Compatibility compatibility(const std::string& model, const std::string& rule) {
   return {};
 }
 
+void UpdateRule::writeLayers(OccupancyMap& map) const {
+  writeLayersOf(*this, map);
+}
+
 }  // namespace sg

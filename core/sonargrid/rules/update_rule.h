@@ -22,6 +22,21 @@ struct RuleInfo {
   std::vector<ParameterSpec> parameters;
 };
 
+// What a rule may need of a whole footprint when it is given the footprint in parts (the mapper
+// maps bands of grid rows on separate threads, each band seeing only its rows of every footprint).
+// `occupied` is the sum of the cells' occupied evidence in fixed point, units of 2^-40: integer
+// sums are exact, so the total is the same however the footprint was cut.
+struct FootprintTotals {
+  std::int64_t occupied = 0;
+  double occupiedSum() const { return static_cast<double>(occupied) * 0x1p-40; }
+};
+inline std::int64_t occupiedFixedPoint(const Footprint& footprint) {
+  std::int64_t sum = 0;
+  for (const CellEvidence& c : footprint.cells)
+    sum += static_cast<std::int64_t>(static_cast<double>(c.occupied) * 0x1p40);
+  return sum;
+}
+
 class UpdateRule {
  public:
   virtual ~UpdateRule() = default;
@@ -30,14 +45,41 @@ class UpdateRule {
   virtual void configure(const ParameterSet& params) = 0;
   // Clears the layers to "nothing known" for a grid of `cells` cells.
   virtual void reset(std::size_t cells) = 0;
-  // Folds one reading's footprint into the layers.
+  // Folds one reading's footprint into the layers. A rule updates each cell of the footprint from
+  // that cell's evidence alone (and from totals(), below): the mapper relies on it to give a rule
+  // the rows of one footprint in parts, from several threads at once, never the same cell twice.
   virtual void apply(const Footprint& footprint) = 0;
+  // Whether apply() uses FootprintTotals (then the mapper works them out before giving it parts).
+  virtual bool needsTotals() const { return false; }
+  // Folds part of a footprint (some of its rows), given the totals of the whole footprint.
+  virtual void applyPart(const Footprint& part, const FootprintTotals& /*totals*/) { apply(part); }
 
   virtual double occupancy(std::size_t cell) const = 0;  // p(occupied) in [0, 1]
   virtual double native(std::size_t cell) const = 0;
   virtual bool filled(std::size_t cell) const = 0;  // occupied evidence beats free evidence
   virtual std::uint8_t level(std::size_t cell) const { return levelOfProbability(occupancy(cell)); }
+  // The four layers of `map` (already sized to the grid), from the four functions above. Each rule
+  // overrides it with writeLayersOf(*this, map) so that the per-cell calls are inlined: a re-map's
+  // snapshot is 4 × 200 000 virtual calls otherwise, several ms of a slider's latency.
+  virtual void writeLayers(OccupancyMap& map) const;
 };
+
+// The body of every rule's writeLayers(): Rule is the final class, so the compiler makes its calls
+// direct and inlines them.
+template <class Rule>
+void writeLayersOf(const Rule& rule, OccupancyMap& map) {
+  const std::size_t n = map.probability.size();
+  double* const probability = map.probability.data();
+  double* const native = map.native.data();
+  std::uint8_t* const level = map.level.data();
+  std::uint8_t* const filled = map.filled.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    probability[i] = rule.occupancy(i);
+    native[i] = rule.native(i);
+    level[i] = rule.level(i);
+    filled[i] = rule.filled(i) ? 1 : 0;
+  }
+}
 
 std::vector<std::string> updateRuleNames();
 std::unique_ptr<UpdateRule> makeUpdateRule(const std::string& name);  // nullptr when unknown
