@@ -68,8 +68,8 @@ double AdditionRule::occupancy(std::size_t i) const {
   return paper001Combine_ ? v : 0.5 * (1.0 + v);
 }
 
-void AdditionRule::writeLayers(OccupancyMap& map) const {
-  writeLayersOf(*this, map);
+void AdditionRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
+  writeLayersOf(*this, map, begin, end);
 }
 
 }  // namespace sg

@@ -57,8 +57,8 @@ void BayesRule::apply(const Footprint& fp) {
   }
 }
 
-void BayesRule::writeLayers(OccupancyMap& map) const {
-  writeLayersOf(*this, map);
+void BayesRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
+  writeLayersOf(*this, map, begin, end);
 }
 
 }  // namespace sg

@@ -79,8 +79,8 @@ double DempsterShaferRule::occupancy(std::size_t i) const {
   return mass_[i].occ + 0.5 * mu;
 }
 
-void DempsterShaferRule::writeLayers(OccupancyMap& map) const {
-  writeLayersOf(*this, map);
+void DempsterShaferRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
+  writeLayersOf(*this, map, begin, end);
 }
 
 }  // namespace sg

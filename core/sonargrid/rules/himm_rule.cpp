@@ -44,8 +44,8 @@ void HimmRule::apply(const Footprint& fp) {
   }
 }
 
-void HimmRule::writeLayers(OccupancyMap& map) const {
-  writeLayersOf(*this, map);
+void HimmRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
+  writeLayersOf(*this, map, begin, end);
 }
 
 }  // namespace sg

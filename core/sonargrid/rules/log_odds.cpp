@@ -63,8 +63,8 @@ double LogOddsRule::occupancy(std::size_t i) const {
   return odds_[i] / (1.0 + odds_[i]);
 }
 
-void LogOddsRule::writeLayers(OccupancyMap& map) const {
-  writeLayersOf(*this, map);
+void LogOddsRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
+  writeLayersOf(*this, map, begin, end);
 }
 
 }  // namespace sg

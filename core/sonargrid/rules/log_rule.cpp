@@ -59,8 +59,8 @@ double LogRule::occupancy(std::size_t i) const {
   return m >= 0.0 ? 0.5 + 0.5 * m / cutMax_ : 0.5 - 0.5 * m / cutMin_;
 }
 
-void LogRule::writeLayers(OccupancyMap& map) const {
-  writeLayersOf(*this, map);
+void LogRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
+  writeLayersOf(*this, map, begin, end);
 }
 
 }  // namespace sg

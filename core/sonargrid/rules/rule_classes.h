@@ -20,7 +20,7 @@ class AdditionRule final : public UpdateRule {
   double occupancy(std::size_t cell) const override;
   double native(std::size_t cell) const override;
   bool filled(std::size_t cell) const override { return occ_[cell] > emp_[cell]; }
-  void writeLayers(OccupancyMap& map) const override;
+  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override;
 
  private:
   bool paper001Combine_ = false;
@@ -45,7 +45,7 @@ class BayesRule final : public UpdateRule {
   double occupancy(std::size_t cell) const override { return map_[cell]; }
   double native(std::size_t cell) const override { return map_[cell]; }
   bool filled(std::size_t cell) const override { return map_[cell] > 0.5; }
-  void writeLayers(OccupancyMap& map) const override;
+  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override;
 
  private:
   Input input_;
@@ -64,7 +64,7 @@ class LogRule final : public UpdateRule {
   double occupancy(std::size_t cell) const override;
   double native(std::size_t cell) const override;
   bool filled(std::size_t cell) const override { return native(cell) > 0.0; }
-  void writeLayers(OccupancyMap& map) const override;
+  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override;
 
  private:
   double cutMin_ = -2.0, cutMax_ = 2.0;
@@ -82,7 +82,7 @@ class LogOddsRule final : public UpdateRule {
   double occupancy(std::size_t cell) const override;
   double native(std::size_t cell) const override;
   bool filled(std::size_t cell) const override { return odds_[cell] > 1.0; }
-  void writeLayers(OccupancyMap& map) const override;
+  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override;
 
  private:
   double priorOdds_ = 1.0, minOdds_ = 0.0, maxOdds_ = 0.0;
@@ -100,7 +100,7 @@ class HimmRule final : public UpdateRule {
   double occupancy(std::size_t cell) const override { return cv_[cell] / double(cvMax_); }
   double native(std::size_t cell) const override { return cv_[cell]; }
   bool filled(std::size_t cell) const override { return cv_[cell] > 0; }
-  void writeLayers(OccupancyMap& map) const override;
+  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override;
   std::uint8_t level(std::size_t cell) const override { return cv_[cell]; }
 
  private:
@@ -119,7 +119,7 @@ class DempsterShaferRule final : public UpdateRule {
   double occupancy(std::size_t cell) const override;
   double native(std::size_t cell) const override { return mass_[cell].occ - mass_[cell].emp; }
   bool filled(std::size_t cell) const override { return mass_[cell].occ > mass_[cell].emp; }
-  void writeLayers(OccupancyMap& map) const override;
+  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override;
 
  private:
   // m(unknown) = 1 − both. Side by side, so one cell's update touches one cache line.

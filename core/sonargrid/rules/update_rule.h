@@ -58,22 +58,22 @@ class UpdateRule {
   virtual double native(std::size_t cell) const = 0;
   virtual bool filled(std::size_t cell) const = 0;  // occupied evidence beats free evidence
   virtual std::uint8_t level(std::size_t cell) const { return levelOfProbability(occupancy(cell)); }
-  // The four layers of `map` (already sized to the grid), from the four functions above. Each rule
-  // overrides it with writeLayersOf(*this, map) so that the per-cell calls are inlined: a re-map's
-  // snapshot is 4 × 200 000 virtual calls otherwise, several ms of a slider's latency.
-  virtual void writeLayers(OccupancyMap& map) const;
+  // Cells [begin, end) of the four layers of `map` (already sized to the grid), from the four
+  // functions above. Each rule overrides it with writeLayersOf(*this, ...) so that the per-cell
+  // calls are inlined: a re-map's snapshot is 4 × 200 000 virtual calls otherwise, several ms of a
+  // slider's latency. Disjoint ranges may be written from several threads at once.
+  virtual void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const;
 };
 
 // The body of every rule's writeLayers(): Rule is the final class, so the compiler makes its calls
 // direct and inlines them.
 template <class Rule>
-void writeLayersOf(const Rule& rule, OccupancyMap& map) {
-  const std::size_t n = map.probability.size();
+void writeLayersOf(const Rule& rule, OccupancyMap& map, std::size_t begin, std::size_t end) {
   double* const probability = map.probability.data();
   double* const native = map.native.data();
   std::uint8_t* const level = map.level.data();
   std::uint8_t* const filled = map.filled.data();
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = begin; i < end; ++i) {
     probability[i] = rule.occupancy(i);
     native[i] = rule.native(i);
     level[i] = rule.level(i);
