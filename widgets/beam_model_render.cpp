@@ -467,7 +467,7 @@ void drawSurface(QPainter& painter, const BeamScene& scene, const BeamExtent& ex
   // represents unknown", paper 002 Fig. 2), drawn back to front (painter's algorithm).
   const BeamProbe probe(scene);
   std::vector<double> xs, ys;
-  constexpr int kNx = 64, kNy = 40;
+  constexpr int kNx = 48, kNy = 30;
   for (int i = 0; i <= kNx; ++i) xs.push_back(extent.xMax * i / kNx);
   if (std::isfinite(scene.range) && scene.range < extent.xMax) xs.push_back(scene.range);
   std::sort(xs.begin(), xs.end());

@@ -16,13 +16,15 @@
 namespace sg::ui {
 
 // The surface for platforms without OpenGL: paints renderGridImage(), caching the cells while only
-// the overlays change.
+// the overlays change and the overlays while only the map changes (a re-map repaints the cells
+// alone; stroking the path and the cones again cost it several ms). Like the GL surface.
 class GridRasterSurface : public QWidget {
  public:
   explicit GridRasterSurface(GridView* view) : QWidget(view), view_(view) {
     setAttribute(Qt::WA_OpaquePaintEvent);
   }
   void invalidateCells() { cellsValid_ = false; }
+  void invalidateOverlays() { overlaysValid_ = false; }
 
  protected:
   void paintEvent(QPaintEvent*) override {
@@ -32,18 +34,27 @@ class GridRasterSurface : public QWidget {
       cachedView_ = view_->view_;
       cellsValid_ = true;
     }
+    if (!overlaysValid_ || overlays_.size() != size || overlaysView_ != view_->view_) {
+      overlays_ = QImage(size, QImage::Format_ARGB32_Premultiplied);
+      overlays_.fill(Qt::transparent);
+      QPainter overlayPainter(&overlays_);
+      paintOverlays(overlayPainter, view_->scene_, view_->palette_, view_->overlays_, view_->view_,
+                    size);
+      overlaysView_ = view_->view_;
+      overlaysValid_ = true;
+    }
     QPainter painter(this);
     painter.drawImage(0, 0, cells_);
-    paintOverlays(painter, view_->scene_, view_->palette_, view_->overlays_, view_->view_, size);
+    painter.drawImage(0, 0, overlays_);
     painter.end();
     view_->surfacePainted();
   }
 
  private:
   GridView* view_;
-  QImage cells_;
-  ViewTransform cachedView_;
-  bool cellsValid_ = false;
+  QImage cells_, overlays_;
+  ViewTransform cachedView_, overlaysView_;
+  bool cellsValid_ = false, overlaysValid_ = false;
 };
 
 namespace {
@@ -85,8 +96,12 @@ GridView::GridView(Backend backend, QWidget* parent)
 GridView::~GridView() = default;
 
 void GridView::refresh(bool levelsChanged) {
-  if (!levelsChanged && backend_ == Backend::OpenGL)
-    static_cast<GridGlSurface*>(surface_)->overlaysChanged();
+  if (!levelsChanged) {
+    if (backend_ == Backend::OpenGL)
+      static_cast<GridGlSurface*>(surface_)->overlaysChanged();
+    else
+      static_cast<GridRasterSurface*>(surface_)->invalidateOverlays();
+  }
   if (levelsChanged) {
     if (backend_ == Backend::OpenGL)
       static_cast<GridGlSurface*>(surface_)->levelsChanged();
@@ -130,6 +145,7 @@ void GridView::setHighlightedSonar(std::optional<std::size_t> sonar) {
 void GridView::setLevelPalette(const LevelPalette& palette) {
   palette_ = palette;
   if (backend_ == Backend::OpenGL) static_cast<GridGlSurface*>(surface_)->paletteChanged();
+  refresh(false);  // the legend
   refresh(true);
 }
 

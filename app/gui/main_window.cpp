@@ -121,8 +121,13 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   connect(rememberSettingsTimer_, &QTimer::timeout, this, &MainWindow::rememberSettings);
   beamSettingsTimer_ = new QTimer(this);
   beamSettingsTimer_->setSingleShot(true);
-  beamSettingsTimer_->setInterval(100);
+  beamSettingsTimer_->setInterval(kBeamIntervalMs);
   connect(beamSettingsTimer_, &QTimer::timeout, this, &MainWindow::showBeamSettings);
+  beamShown_.start();
+  summaryTimer_ = new QTimer(this);
+  summaryTimer_->setSingleShot(true);
+  summaryTimer_->setInterval(kSummaryIntervalMs);
+  connect(summaryTimer_, &QTimer::timeout, this, &MainWindow::updateSummary);
 
   statusBar()->addWidget(hoverLabel_, 1);
   statusBar()->addPermanentWidget(remapLabel_);
@@ -146,7 +151,8 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
 
   connect(view_, &ui::GridView::hoverText, hoverLabel_, &QLabel::setText);
   connect(view_, &ui::GridView::repainted, this, [this] {
-    if (beamSettingsPending_ && !remap_->busy()) showBeamSettings();
+    if (beamSettingsPending_ && !remap_->busy() && beamShown_.elapsed() >= kBeamIntervalMs)
+      showBeamSettings();
   });
   connect(remap_, &ui::RemapController::mapped, this,
           [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64, bool incremental) {
@@ -486,23 +492,27 @@ void MainWindow::showSettings() {
     rebuildMappingMenu();
   view_->setNativeName(QString::fromStdString(updateRuleInfo(settings.rule).nativeName));
   panel_->setSettings(settings);
-  // The beam view's picture costs 10-20 ms of GUI thread: drawn once the grid shows the new map,
-  // so as not to compete with the re-map and the grid's repaint, or after 100 ms at the latest
-  // (a long re-map of a big log) so that it still follows a dragged slider.
+  // The beam view's picture costs 5-10 ms of GUI thread, and on two cores every ms of it is taken
+  // from the re-map: drawn once the grid shows the new map, or kBeamIntervalMs after the change
+  // (a long re-map of a big log), but not more often than every kBeamIntervalMs, so a dragged
+  // slider moves it several times a second without slowing the map.
   if (data_) {
     beamSettingsPending_ = true;
-    beamSettingsTimer_->start();
+    if (!beamSettingsTimer_->isActive()) beamSettingsTimer_->start();
   } else {
     beamView_->setSettings(settings);
   }
-  showCurrentScan();
-  updateSummary();
+  // The robot, its path and the current beams depend on the pose source only: a parameter change
+  // must not redraw them (and the grid's overlays) on every step of a dragged slider.
+  if (scanShownPose_ != settings.pose) showCurrentScan();
+  if (!summaryTimer_->isActive()) summaryTimer_->start();
   updateTitle();
 }
 
 void MainWindow::showBeamSettings() {
   beamSettingsTimer_->stop();
   beamSettingsPending_ = false;
+  beamShown_.restart();
   beamView_->setSettings(settings_);
 }
 
@@ -677,6 +687,7 @@ void MainWindow::adoptLog(const QString& path, std::shared_ptr<const Dataset> da
   hoverLabel_->setText(tr("Hover over the grid to read a cell; drag to pan, wheel to zoom."));
   chosenSonar_.reset();
   beamView_->setMaxRange(data_->ring.maxRange);
+  scanShownPose_.reset();  // a new log: its scan must be drawn
   showSettings();
   remap_->start(data_, cellSize_, settings_, timeline_->time());
 }
@@ -713,7 +724,9 @@ bool MainWindow::waitForMap(int timeoutMs) {
 void MainWindow::onMapped(double elapsedMs) {
   lastRemapMs_ = elapsedMs;
   remapLabel_->setText(tr("re-mapped in %1 ms").arg(elapsedMs, 0, 'f', 1));
-  updateSummary();
+  // The summary's rich text is laid out again on every change (a few ms): a few times a second is
+  // all a reader needs while a slider is dragged.
+  if (!summaryTimer_->isActive()) summaryTimer_->start();
 }
 
 void MainWindow::onTimeChanged(double t, std::size_t) {
@@ -724,6 +737,7 @@ void MainWindow::onTimeChanged(double t, std::size_t) {
 
 void MainWindow::showCurrentScan() {
   if (!data_) return;
+  scanShownPose_ = settings_.pose;
   const std::size_t scan = timeline_->currentScan();
   view_->setRobotAt(data_.get(), settings_.pose, scan);
   const std::vector<Reading>& readings = data_->scans[scan].readings;

@@ -4,6 +4,7 @@
 // RemapController and the views. The window never parses a file or evaluates a model: the core
 // does (DESIGN.md, "Data flow").
 
+#include <QElapsedTimer>
 #include <QMainWindow>
 #include <QStringList>
 #include <memory>
@@ -179,6 +180,11 @@ class MainWindow : public QMainWindow {
   QTimer* rememberSettingsTimer_ = nullptr;
   QTimer* beamSettingsTimer_ = nullptr;
   bool beamSettingsPending_ = false;
+  QElapsedTimer beamShown_;                  // since the beam view last took new settings
+  std::optional<PoseSource> scanShownPose_;  // the pose source of the scan drawn, if any
+  static constexpr int kBeamIntervalMs = 150;
+  QTimer* summaryTimer_ = nullptr;
+  static constexpr int kSummaryIntervalMs = 250;
   double cellSize_ = 0.05;
   double lastRemapMs_ = 0.0;
   QStringList recent_;
