@@ -60,13 +60,23 @@ std::shared_ptr<const BeamTables> BeamTables::shared(double cellSize, double rea
   // cell sizes is all a session uses; beyond that the entry with the smallest key goes.
   static std::map<std::pair<double, int>, std::shared_ptr<const BeamTables>> cache;
   constexpr std::size_t kMaxEntries = 4;
-  const int radius = radiusFor(cellSize, reach);
+  int radius = radiusFor(cellSize, reach);
   std::lock_guard lock(mutex);
   // Any cached table of this cell size that reaches far enough serves.
   for (auto it = cache.lower_bound({cellSize, radius});
        it != cache.end() && it->first.first == cellSize; ++it) {
     return it->second;
   }
+  // Outgrown: grow by a quarter at least, so that a slider dragged up its range (a tolerance up to
+  // 2 m) rebuilds once, not at every step of kRadiusStep.
+  for (const auto& [key, table] : cache) {
+    if (key.first != cellSize) continue;
+    const int grown = (key.second * 5 / 4 + kRadiusStep - 1) / kRadiusStep * kRadiusStep;
+    radius = std::max(radius, grown);
+  }
+  // The new table serves every reach the smaller ones of its cell size did: they go (a mapper
+  // using one keeps it alive).
+  std::erase_if(cache, [cellSize](const auto& entry) { return entry.first.first == cellSize; });
   if (cache.size() >= kMaxEntries) cache.erase(cache.begin());
   auto t = std::make_shared<const BeamTables>(cellSize, radius);
   cache[{cellSize, radius}] = t;

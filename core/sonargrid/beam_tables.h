@@ -35,7 +35,8 @@ class BeamTables {
   }
 
   // Tables for `cellSize` that reach at least `reach` metres, shared between mappers (thread-safe).
-  // Their radius is radiusFor(cellSize, reach) or more: a cached table that reaches further serves.
+  // Their radius is radiusFor(cellSize, reach) or more: a cached table that reaches further serves,
+  // and one that must replace a smaller one of the same cell size is at least 5/4 of its radius.
   static std::shared_ptr<const BeamTables> shared(double cellSize, double reach);
 
   // The radius shared() builds for a reach: ceil(reach / cellSize) + 2 cells, rounded up to a

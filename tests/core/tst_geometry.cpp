@@ -914,16 +914,17 @@ void TstGeometry::beamTablesShared() {
   QCOMPARE(sg::BeamTables::radiusFor(0.0625, 1.875), 32);
   QCOMPARE(sg::BeamTables::shared(0.0625, 1.875), a);
 
-  // Past the step a bigger table is built: ceil(1.9 / 0.0625) + 2 = 31 + 2 = 33 → 64. It then
-  // serves its own reach again.
+  // Past the step a bigger table is built: ceil(1.9 / 0.0625) + 2 = 31 + 2 = 33 → 64 (5/4 of the
+  // cached 32 is 40 → 64 too). It then serves its own reach again.
   QCOMPARE(sg::BeamTables::radiusFor(0.0625, 1.9), 64);
   const std::shared_ptr<const sg::BeamTables> b = sg::BeamTables::shared(0.0625, 1.9);
   QVERIFY(b != a);
   QCOMPARE(b->radius(), 64);
   QCOMPARE(sg::BeamTables::shared(0.0625, 1.9), b);
-  // Any cached table of the cell size that reaches far enough serves a shorter reach: here the
-  // smaller one, 32 >= 32.
-  QCOMPARE(sg::BeamTables::shared(0.0625, 0.5), a);
+
+  // A bigger table replaces the smaller ones of its cell size in the cache: a shorter reach now
+  // gets it too.
+  QCOMPARE(sg::BeamTables::shared(0.0625, 0.5), b);
 
   // Another cell size never shares: 1 / 0.03125 = 32, + 2 = 34 → 64.
   const std::shared_ptr<const sg::BeamTables> c = sg::BeamTables::shared(0.03125, 1.0);
@@ -931,6 +932,15 @@ void TstGeometry::beamTablesShared() {
   QCOMPARE(c->cellSize(), 0.03125);
   QCOMPARE(c->radius(), 64);
   QCOMPARE(sg::BeamTables::shared(0.03125, 1.0), c);
+
+  // Outgrowing a table grows it by a quarter at least. 0.125 m cells (used by no other test):
+  // 27.5 m needs ceil(220) + 2 = 222 → 224; 27.9 m needs ceil(223.2) + 2 = 226 → 256 by the step,
+  // but 5/4 · 224 = 280 → 288 is built, which then serves up to (288 − 2) · 0.125 = 35.75 m.
+  QCOMPARE(sg::BeamTables::shared(0.125, 27.5)->radius(), 224);
+  QCOMPARE(sg::BeamTables::radiusFor(0.125, 27.9), 256);
+  const std::shared_ptr<const sg::BeamTables> d = sg::BeamTables::shared(0.125, 27.9);
+  QCOMPARE(d->radius(), 288);
+  QCOMPARE(sg::BeamTables::shared(0.125, 35.75), d);
 }
 
 void TstGeometry::beamTablesFilledByEveryCore() {
