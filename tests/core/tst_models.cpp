@@ -40,6 +40,7 @@ class TstModels : public QObject {
   void evidenceAndProbabilityAgree();
   void footprintMatchesEvaluate();
   void footprintRowsAreItsRows();
+  void reachBoundsTheFootprint();
   void declarationsAreComplete();
 };
 
@@ -354,6 +355,45 @@ void TstModels::footprintRowsAreItsRows() {
   const RowWindow w{0, 100, 8, 2, 1};
   QVERIFY(!w.contains(7) && w.contains(8) && w.contains(15) && !w.contains(16) && w.contains(24));
   QVERIFY(!w.contains(-1) && !w.contains(100));
+}
+
+void TstModels::reachBoundsTheFootprint() {
+  // reach(maxRange) sizes the mapper's tables, so no footprint may go further: every cell centre
+  // within reach + half a cell diagonal of the sensor. Murphy's R of 20 m with a 5 m transducer
+  // does not take any beam past 5 m + tolerance (an echo is nearer than 5 m; no echo clears to
+  // min(5, R)), so its reach is 5.1 m, not 20.1 m.
+  GridSpec grid;
+  grid.cellSize = 0.05;
+  grid.width = 600;
+  grid.height = 600;
+  const double maxRange = 5.0;
+  auto murphy = model("murphy", {{"max_range", 20.0}, {"no_echo", 1.0}});
+  QCOMPARE(murphy->reach(maxRange), 5.0 + 0.1);
+  for (const std::string name : {"hpf", "konolige", "murphy", "parameterized", "himm"}) {
+    auto m = name == "murphy" ? std::move(murphy) : model(name.c_str(), {{"no_echo", 1.0}});
+    const double reach = m->reach(maxRange);
+    const auto tables = BeamTables::shared(grid.cellSize, reach);
+    double furthest = 0.0;
+    for (const double range : {0.4, 2.5, 4.99, kNoEcho}) {
+      Beam beam;
+      beam.sensor = Pose2D(15.02, 14.97, 0.3);
+      beam.range = range;
+      beam.maxRange = maxRange;
+      Footprint fp;
+      m->footprint(beam, grid, *tables, fp);
+      for (const CellEvidence& c : fp.cells) {
+        const double x = (c.cell % 600 + 0.5) * grid.cellSize,
+                     y = (c.cell / 600 + 0.5) * grid.cellSize;
+        furthest = std::max(furthest, std::hypot(x - 15.02, y - 14.97));
+      }
+    }
+    QVERIFY2(furthest <= reach + grid.cellSize * std::sqrt(0.5),
+             qPrintable(QString::fromStdString(name) + ": " + QString::number(furthest) + " > " +
+                        QString::number(reach)));
+    // And the bound is tight: some cell lies within 0.2 m of it (Konolige's reach is where its
+    // attenuation ends, 1 / 0.4 = 2.5 m).
+    QVERIFY2(furthest > reach - 0.2, name.c_str());
+  }
 }
 
 void TstModels::declarationsAreComplete() {

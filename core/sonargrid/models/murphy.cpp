@@ -112,7 +112,10 @@ void MurphyModel::configure(const ParameterSet& p) {
 }
 
 double MurphyModel::reach(double maxRange) const {
-  return std::max(maxRange, maxRange_) + tolerance_;
+  // An echo is nearer than the transducer's maximum and writes to range + tolerance; no echo clears
+  // to min(maxRange, R). The model's R never takes a beam further (it only shapes eq 1), so a 20 m
+  // R must not size the tables for 20 m.
+  return maxRange + tolerance_;
 }
 
 std::unique_ptr<SensorModel> makeMurphyModel() {
