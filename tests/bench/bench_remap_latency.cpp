@@ -37,6 +37,7 @@
 #include "parameter_panel.h"
 #include "remap_controller.h"
 #include "sonargrid/io/sglog.h"
+#include "sonargrid/mapper.h"
 
 namespace {
 
@@ -157,6 +158,22 @@ int main(int argc, char** argv) {
     const int probes = std::max(0, option("--probe", "0").toInt());
     const double cell = option("--cell", "0.05").toDouble();
     const bool bare = args.contains("--controller");
+
+    // The machine's speed now: one thread re-mapping the log with the default parameters, best of
+    // three. A shared VM runs at very different speeds from one minute to the next; this line lets
+    // two reports be compared.
+    {
+      sg::Mapper reference(data->ring, data->fittingGrid(settings.pose, cell), settings);
+      double best = std::numeric_limits<double>::infinity();
+      for (int k = 0; k < 3; ++k) {
+        QElapsedTimer clock;
+        clock.start();
+        reference.reset();
+        for (const sg::Scan& scan : data->scans) reference.integrate(scan);
+        best = std::min(best, static_cast<double>(clock.nsecsElapsed()) * 1e-6);
+      }
+      std::cout << "  machine: one-thread re-map with default parameters " << best << " ms\n";
+    }
 
     // Either the whole window or a bare controller + view.
     std::unique_ptr<sg::app::MainWindow> window;
