@@ -193,14 +193,12 @@ int main(int argc, char** argv) {
                          view->setMap(std::move(map));
                        });
       view->show();
-      remap->start(data, cell, settings, std::numeric_limits<double>::infinity());
     } else {
       window = std::make_unique<sg::app::MainWindow>();
       window->resize(1280, 800);
       window->setCellSize(cell);
       window->setMapperSettings(settings);
       window->show();
-      if (!window->openLog(args[1], true)) return 2;
       view = window->gridView();
       remap = window->remapController();
       slider = window->parameterPanel()->sliderFor(QString::fromStdString(param));
@@ -220,14 +218,18 @@ int main(int argc, char** argv) {
       if (!shown) mappedToShown = static_cast<double>(sinceMapped.nsecsElapsed()) * 1e-6;
       shown = true;
     });
+    // Connected before the log is opened: the first map may arrive while openLog() waits.
+    quint64 lastDelivered = 0;
+    QObject::connect(remap, &sg::ui::RemapController::mapped,
+                     [&](auto, double, quint64 g, bool) { lastDelivered = g; });
     auto waitForNewest = [&](quint64 generation) {
-      bool delivered = false;
-      const auto c =
-          QObject::connect(remap, &sg::ui::RemapController::mapped,
-                           [&](auto, double, quint64 g, bool) { delivered = g == generation; });
-      while (!(delivered && shown)) QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents);
-      QObject::disconnect(c);
+      while (!(lastDelivered == generation && shown))
+        QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents);
     };
+    if (bare)
+      remap->start(data, cell, settings, std::numeric_limits<double>::infinity());
+    else if (!window->openLog(args[1], true))
+      return 2;
     waitForNewest(remap->latestGeneration());  // warm-up: first map, view fitted
 
     // Slider positions (panel) or values (bare) across the range.
