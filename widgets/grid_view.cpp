@@ -9,6 +9,7 @@
 #include <QPinchGesture>
 #include <QVBoxLayout>
 #include <QWheelEvent>
+#include <algorithm>
 #include <cmath>
 
 #include "grid_gl_surface.h"
@@ -111,8 +112,20 @@ void GridView::refresh(bool levelsChanged) {
   surface_->update();
 }
 
+namespace {
+// Whether two grids cover the same ground to within two of the larger cells: a preview on coarser
+// cells and the full map of the same log (RemapController::previewed) keep the user's view.
+bool sameGround(const GridSpec& a, const GridSpec& b) {
+  const double slack = 2.0 * std::max(a.cellSize, b.cellSize);
+  return std::abs(a.origin.x() - b.origin.x()) <= slack &&
+         std::abs(a.origin.y() - b.origin.y()) <= slack &&
+         std::abs(a.width * a.cellSize - b.width * b.cellSize) <= slack &&
+         std::abs(a.height * a.cellSize - b.height * b.cellSize) <= slack;
+}
+}  // namespace
+
 void GridView::setMap(std::shared_ptr<const OccupancyMap> map) {
-  const bool sameGrid = scene_.map && map && scene_.map->spec == map->spec;
+  const bool sameGrid = scene_.map && map && sameGround(scene_.map->spec, map->spec);
   scene_.map = std::move(map);
   if (!sameGrid && scene_.map) {
     followFit_ = true;

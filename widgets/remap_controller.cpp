@@ -1,6 +1,7 @@
 #include "remap_controller.h"
 
 #include <QMetaObject>
+#include <algorithm>
 #include <chrono>
 #include <exception>
 
@@ -74,7 +75,39 @@ void RemapController::start(std::shared_ptr<const Dataset> data, double cellSize
 void RemapController::setSettings(const MapperSettings& settings) {
   settings_ = settings;
   haveSettings_ = true;
-  remap();
+  run(previewFactor_ > 1 && lastFullMs_ > previewAboveMs_);
+}
+
+void RemapController::setPreview(int factor, double aboveMs) {
+  previewFactor_ = std::max(1, factor);
+  previewAboveMs_ = aboveMs;
+}
+
+void RemapController::startPreview(quint64 generation,
+                                   const std::shared_ptr<std::atomic<bool>>& cancel) {
+  pool_.start([this, data = data_, settings = settings_, cellSize = cellSize_ * previewFactor_,
+               until = until_, cancel, generation] {
+    std::shared_ptr<const OccupancyMap> map;
+    double ms = 0.0;
+    try {
+      const auto t0 = std::chrono::steady_clock::now();
+      Mapper mapper(data->ring, data->fittingGrid(settings.pose, cellSize), settings);
+      if (mapper.mapDataset(*data, until, cancel.get())) {
+        map = std::make_shared<const OccupancyMap>(mapper.snapshot());
+        ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                 .count();
+      }
+    } catch (const std::exception&) {
+      // The full run reports the error.
+    }
+    if (!map) return;
+    QMetaObject::invokeMethod(
+        this,
+        [this, generation, map = std::move(map), ms] {
+          if (generation == generation_) emit previewed(map, ms, generation);
+        },
+        Qt::QueuedConnection);
+  });
 }
 
 void RemapController::setUntil(double until) {
@@ -83,12 +116,17 @@ void RemapController::setUntil(double until) {
 }
 
 void RemapController::remap() {
+  run(false);
+}
+
+void RemapController::run(bool preview) {
   if (!data_ || !haveSettings_) return;
   if (cancelRunning_) cancelRunning_->store(true);
   auto cancel = std::make_shared<std::atomic<bool>>(false);
   cancelRunning_ = cancel;
   const quint64 generation = ++generation_;
   if (running_++ == 0) emit busyChanged(true);
+  if (preview) startPreview(generation, cancel);  // queued first, so it runs first
 
   pool_.start([this, data = data_, settings = settings_, cellSize = cellSize_, until = until_,
                cancel, generation, warm = warm_] {
@@ -166,6 +204,7 @@ void RemapController::finish(quint64 generation, std::shared_ptr<const Occupancy
   } else if (stale || interrupted || !map) {
     emit cancelled(generation, interrupted);
   } else {
+    if (!incremental) lastFullMs_ = ms;
     emit mapped(std::move(map), ms, generation, incremental);
   }
 }

@@ -9,6 +9,11 @@
 // between instead of starting over (the timeline playing). For a log whose readings are in time
 // order that gives the same bits as a batch run to the new time (Mapper: batch and incremental
 // mapping are identical); other logs always start over.
+//
+// Optionally (setPreview), a change of settings whose last full re-map was slow is first mapped on
+// cells `factor` times larger, a fraction of the work, and delivered as previewed(); the full map
+// follows as mapped(). A dragged slider then moves the picture at once on any log; the full map
+// arrives when the slider rests long enough for it. Previews are never cancelled() or failed().
 
 #include <QObject>
 #include <QString>
@@ -42,6 +47,10 @@ class RemapController : public QObject {
   double until() const { return until_; }
   bool busy() const { return running_ > 0; }
   quint64 latestGeneration() const { return generation_; }
+  // Preview a settings change on cells `factor` times as large when the last full re-map of the
+  // log took more than `aboveMs`; factor 1 (the default) turns previews off.
+  void setPreview(int factor, double aboveMs);
+  int previewFactor() const { return previewFactor_; }
 
  public slots:
   // Each of these starts a new run and cancels the stale one. Returns nothing; the outcome arrives
@@ -58,6 +67,8 @@ class RemapController : public QObject {
   // A run was superseded; `interrupted` says it stopped before the end of the log.
   void cancelled(quint64 generation, bool interrupted);
   void failed(const QString& message, quint64 generation);
+  // A quick map of the newest settings on coarser cells, ahead of its mapped() (setPreview).
+  void previewed(std::shared_ptr<const sg::OccupancyMap> map, double elapsedMs, quint64 generation);
   void busyChanged(bool busy);
 
  private:
@@ -65,6 +76,8 @@ class RemapController : public QObject {
   struct WarmMapper;
   void finish(quint64 generation, std::shared_ptr<const OccupancyMap> map, double ms,
               bool interrupted, bool incremental, const QString& error);
+  void run(bool preview);
+  void startPreview(quint64 generation, const std::shared_ptr<std::atomic<bool>>& cancel);
 
   std::shared_ptr<const Dataset> data_;
   double cellSize_ = 0.05;
@@ -74,6 +87,9 @@ class RemapController : public QObject {
   quint64 generation_ = 0;
   std::shared_ptr<std::atomic<bool>> cancelRunning_;
   int running_ = 0;
+  int previewFactor_ = 1;
+  double previewAboveMs_ = 0.0;
+  double lastFullMs_ = 0.0;  // the last full re-map from scratch (not a continuation)
   // Touched only by jobs, and jobs run one at a time.
   std::shared_ptr<WarmMapper> warm_;
   QThreadPool pool_;

@@ -161,6 +161,16 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
             // The panel shows what a re-map of the log costs, not a continuation while playing.
             if (!incremental) panel_->showRemapTime(ms);
           });
+  // While a slow log re-maps, a change first shows a map on cells twice as large (a quarter of the
+  // work); the full map replaces it (RemapController::setPreview).
+  remap_->setPreview(kPreviewFactor, kPreviewAboveMs);
+  connect(remap_, &ui::RemapController::previewed, this,
+          [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64) {
+            view_->setMap(std::move(map));
+            remapLabel_->setText(tr("preview (%1 cm cells) in %2 ms; mapping…")
+                                     .arg(cellSize_ * kPreviewFactor * 100.0, 0, 'g', 3)
+                                     .arg(ms, 0, 'f', 1));
+          });
   connect(remap_, &ui::RemapController::failed, this, [this](const QString& message, quint64) {
     remapLabel_->setText(tr("mapping failed"));
     reportError(tr("Mapping failed"), logPath_ + QStringLiteral(": ") + message, false);

@@ -185,6 +185,8 @@ class MainWindow : public QMainWindow {
   static constexpr int kBeamIntervalMs = 150;
   QTimer* summaryTimer_ = nullptr;
   static constexpr int kSummaryIntervalMs = 250;
+  static constexpr int kPreviewFactor = 2;
+  static constexpr double kPreviewAboveMs = 30.0;
   double cellSize_ = 0.05;
   double lastRemapMs_ = 0.0;
   QStringList recent_;

@@ -6,8 +6,10 @@
 // By default it opens LOG in the app's MainWindow (parameter panel, beam view and all), sets the
 // panel's slider of NAME (default: the model's first parameter) to N positions across its range
 // (default 40), one at a time, and reports the median and p95 of the time from setting the slider
-// to the first repaint of the grid view showing the map of that value. --controller drives a bare
-// RemapController + GridView instead (no panel, no window), to tell the GUI's share apart.
+// to the first repaint of the grid view showing the full map of that value, and to the first
+// repaint showing that value at all (the window previews a slow log's change on coarser cells).
+// --controller drives a bare RemapController + GridView instead (no panel, no window), to tell the
+// GUI's share apart.
 //
 // --probe N then re-maps N more times (default 0) while a 16 ms timer on the GUI thread (1) records
 // how late it fires, (2) posts a mouse move over the grid view and times it until the hover
@@ -218,6 +220,26 @@ int main(int argc, char** argv) {
       if (!shown) mappedToShown = static_cast<double>(sinceMapped.nsecsElapsed()) * 1e-6;
       shown = true;
     });
+    // The first repaint after a change that shows its settings, a preview (the window's
+    // RemapController::setPreview, on a slow log) or the full map.
+    quint64 stepGeneration = 0;
+    bool stepHasMap = false;
+    double firstShownMs = -1.0;
+    int previews = 0;
+    QElapsedTimer stepClock;
+    auto mapArrived = [&](quint64 g) {
+      if (g == stepGeneration) stepHasMap = true;
+    };
+    QObject::connect(remap, &sg::ui::RemapController::previewed, [&](auto, double, quint64 g) {
+      if (g == stepGeneration) ++previews;
+      mapArrived(g);
+    });
+    QObject::connect(remap, &sg::ui::RemapController::mapped,
+                     [&](auto, double, quint64 g, bool) { mapArrived(g); });
+    QObject::connect(view, &sg::ui::GridView::repainted, [&] {
+      if (stepHasMap && firstShownMs < 0.0)
+        firstShownMs = static_cast<double>(stepClock.nsecsElapsed()) * 1e-6;
+    });
     // Connected before the log is opened: the first map may arrive while openLog() waits.
     quint64 lastDelivered = 0;
     QObject::connect(remap, &sg::ui::RemapController::mapped,
@@ -244,19 +266,24 @@ int main(int argc, char** argv) {
         remap->setSettings(settings);
       }
     };
-    std::vector<double> ms, remapMs, handling, drawing, delivered;
+    std::vector<double> ms, remapMs, handling, drawing, delivered, first;
     const auto timing =
         QObject::connect(remap, &sg::ui::RemapController::mapped,
                          [&](auto, double t, quint64, bool) { remapMs.push_back(t); });
     for (int i = 0; i < steps; ++i) {
       QElapsedTimer clock;
       clock.start();
+      stepClock.start();
+      stepHasMap = false;
+      firstShownMs = -1.0;
+      stepGeneration = remap->latestGeneration() + 1;
       const quint64 before = remap->latestGeneration();
       change(i);
       if (remap->latestGeneration() == before) continue;  // the same slider position
       handling.push_back(static_cast<double>(clock.nsecsElapsed()) * 1e-6);
       waitForNewest(remap->latestGeneration());
       ms.push_back(static_cast<double>(clock.nsecsElapsed()) * 1e-6);
+      first.push_back(firstShownMs);
       drawing.push_back(mappedToShown);
       delivered.push_back(ms.back() - mappedToShown);
     }
@@ -268,7 +295,9 @@ int main(int argc, char** argv) {
               << (bare ? "RemapController + GridView" : "MainWindow panel slider") << " " << param
               << " over " << ms.size() << " steps, "
               << (view->backend() == sg::ui::GridView::Backend::OpenGL ? "OpenGL" : "raster")
-              << " view\n  change -> repainted " << summarise(ms) << "\n  worker re-map alone  "
+              << " view\n  change -> repainted " << summarise(ms)
+              << "\n  change -> first repaint showing it (" << previews << " of " << ms.size()
+              << " a preview) " << summarise(first) << "\n  worker re-map alone  "
               << summarise(remapMs) << "\n  change -> map delivered on the GUI thread "
               << summarise(delivered) << "\n  GUI thread: the change itself " << summarise(handling)
               << "\n  GUI thread: map delivered -> repainted " << summarise(drawing) << '\n';

@@ -133,6 +133,35 @@ class TestGridView : public QObject {
     QCOMPARE(view.view(), zoomed);
   }
 
+  void keepsTheViewForAPreviewOfTheSameGround() {
+    // A preview on cells twice as large covers the same ground ([-2, 8] x [-1, 4] as 10 x 5 cells
+    // of 1 m), and one a cell off still counts (within two of the larger cells): the user's view
+    // stays. Another log's grid, 10 m away, is fitted.
+    GridView view;
+    view.resize(400, 300);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    view.setMap(markedMap());
+    view.zoomAt(2.0, QPointF(100, 100));
+    const ViewTransform zoomed = view.view();
+    GridSpec coarse = markedMap()->spec;
+    coarse.cellSize = 1.0;
+    coarse.width = 10;
+    coarse.height = 5;
+    view.setMap(std::make_shared<OccupancyMap>(OccupancyMap::unobserved(coarse)));
+    QCOMPARE(view.view(), zoomed);
+    coarse.width = 11;
+    coarse.origin = {-3.0, -1.0};
+    view.setMap(std::make_shared<OccupancyMap>(OccupancyMap::unobserved(coarse)));
+    QCOMPARE(view.view(), zoomed);
+    view.setMap(markedMap());
+    QCOMPARE(view.view(), zoomed);
+    GridSpec elsewhere = markedMap()->spec;
+    elsewhere.origin = {8.0, -1.0};
+    view.setMap(std::make_shared<OccupancyMap>(OccupancyMap::unobserved(elsewhere)));
+    QCOMPARE(view.view(), ViewTransform::fitting(elsewhere, view.size()));
+  }
+
   void overlayToggles() {
     GridView view;
     view.setOverlays({});

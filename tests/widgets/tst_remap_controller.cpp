@@ -54,6 +54,67 @@ class TestRemapController : public QObject {
   Q_OBJECT
 
  private slots:
+  void previewThenFullMap() {
+    // setPreview(2, 0): every settings change (after a first full map) is first mapped on cells
+    // twice as large and delivered as previewed(), then in full as mapped(), same generation, in
+    // that order. Each is the batch map of its cell size. The first map of a log and a change of
+    // time are never previewed; previews off (factor 1) give mapped() alone.
+    const auto data = roomLog();
+    RemapController remap;
+    remap.setPreview(2, 0.0);
+    QCOMPARE(remap.previewFactor(), 2);
+    QSignalSpy previewed(&remap, &RemapController::previewed);
+    QSignalSpy mapped(&remap, &RemapController::mapped);
+    std::vector<char> order;  // 'p' or 'm', as delivered
+    connect(&remap, &RemapController::previewed, this, [&] { order.push_back('p'); });
+    connect(&remap, &RemapController::mapped, this, [&] { order.push_back('m'); });
+    const MapperSettings first = settingsFor("hpf", "bayes");
+    remap.start(data, 0.05, first, std::numeric_limits<double>::infinity());
+    QVERIFY(mapped.wait(60000));
+    QCOMPARE(previewed.count(), 0);
+
+    const MapperSettings second = settingsFor("parameterized", "bayes");
+    remap.setSettings(second);
+    QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), 2, 60000);
+    QCOMPARE(previewed.count(), 1);
+    QCOMPARE(order, (std::vector<char>{'m', 'p', 'm'}));
+    QCOMPARE(previewed.at(0).at(2).value<quint64>(), mapped.at(1).at(2).value<quint64>());
+    const auto preview = previewed.at(0).at(0).value<std::shared_ptr<const OccupancyMap>>();
+    const auto full = mapped.at(1).at(0).value<std::shared_ptr<const OccupancyMap>>();
+    QCOMPARE(preview->spec.cellSize, 0.1);
+    QCOMPARE(full->spec.cellSize, 0.05);
+    const double end = std::numeric_limits<double>::infinity();
+    QVERIFY(preview->level == batchMap(*data, second, end, 0.1).level);
+    QVERIFY(full->level == batchMap(*data, second, end, 0.05).level);
+
+    // A change of time: no preview.
+    remap.setUntil(30.0);
+    QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), 3, 60000);
+    QCOMPARE(previewed.count(), 1);
+
+    // Off again: settings changes map once.
+    remap.setPreview(1, 0.0);
+    remap.setSettings(first);
+    QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), 4, 60000);
+    QTest::qWait(50);
+    QCOMPARE(previewed.count(), 1);
+  }
+
+  void previewOnlyForSlowLogs() {
+    // The window previews only when the last full re-map took longer than `aboveMs`: with an
+    // hour's threshold, never.
+    const auto data = roomLog();
+    RemapController remap;
+    remap.setPreview(2, 3.6e6);
+    QSignalSpy previewed(&remap, &RemapController::previewed);
+    QSignalSpy mapped(&remap, &RemapController::mapped);
+    remap.start(data, 0.05, settingsFor("hpf", "bayes"), std::numeric_limits<double>::infinity());
+    QVERIFY(mapped.wait(60000));
+    remap.setSettings(settingsFor("murphy", "bayes-recursive"));
+    QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), 2, 60000);
+    QCOMPARE(previewed.count(), 0);
+  }
+
   void staleRunIsCancelled() {
     const auto data = largeLog();
     RemapController remap;
