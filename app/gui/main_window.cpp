@@ -129,6 +129,10 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   summaryTimer_->setInterval(kSummaryIntervalMs);
   connect(summaryTimer_, &QTimer::timeout, this, &MainWindow::updateSummary);
 
+  remapLabel_->setObjectName(QStringLiteral("remapStatus"));
+  // Wide enough for its longest text, so a new time does not lay the status bar out again.
+  remapLabel_->setMinimumWidth(
+      remapLabel_->fontMetrics().horizontalAdvance(tr("preview at 99.9 cm (9999 ms)…")) + 8);
   statusBar()->addWidget(hoverLabel_, 1);
   statusBar()->addPermanentWidget(remapLabel_);
   loadBar_ = new QProgressBar(this);
@@ -167,9 +171,9 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   connect(remap_, &ui::RemapController::previewed, this,
           [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64) {
             view_->setMap(std::move(map));
-            remapLabel_->setText(tr("preview (%1 cm cells) in %2 ms; mapping…")
+            remapLabel_->setText(tr("preview at %1 cm (%2 ms)…")
                                      .arg(cellSize_ * kPreviewFactor * 100.0, 0, 'g', 3)
-                                     .arg(ms, 0, 'f', 1));
+                                     .arg(ms, 0, 'f', 0));
           });
   connect(remap_, &ui::RemapController::failed, this, [this](const QString& message, quint64) {
     remapLabel_->setText(tr("mapping failed"));

@@ -12,6 +12,7 @@
 #include <QtTest>
 
 #include "beam_model_view.h"
+#include "grid_view.h"
 #include "main_window.h"
 #include "parameter_panel.h"
 #include "remap_controller.h"
@@ -93,10 +94,42 @@ class TestMainWindowPanel : public QObject {
     QVERIFY(after->native == want.native);
     QVERIFY(after->level != before->level);  // a wider occupied arc is a different map
     // The panel shows the time of that re-map; the beam view draws the new ε once the grid has
-    // repainted (MainWindow defers it by 100 ms at most).
+    // repainted (MainWindow defers it by 150 ms at most).
     QVERIFY(window.parameterPanel()->findChild<QLabel*>("remapTime")->text().contains("ms"));
     QTRY_COMPARE(window.beamModelView()->scenes().front().settings.parameters.get("epsilon"),
                  0.149);
+  }
+
+  void slowLogShowsAPreviewFirst() {
+    // The window previews a change on 10 cm cells when the last full re-map took over 30 ms; here
+    // the threshold is 0 so that the room log, fast or not, is previewed. The preview is what the
+    // CLI maps at 10 cm, shown in the same view, and the 5 cm map replaces it.
+    app::MainWindow window;
+    QVERIFY(openRoom(window));
+    window.remapController()->setPreview(2, 0.0);
+    const ui::ViewTransform view = window.gridView()->view();
+    QSignalSpy previewed(window.remapController(), &ui::RemapController::previewed);
+    QSlider* slider = window.parameterPanel()->sliderFor("epsilon");
+    slider->setFocus();
+    QTest::keyClick(slider, Qt::Key_PageUp);  // ε 0.100 → 0.149 m (sliderKeysRemapTheLog)
+    QVERIFY(previewed.wait(60000));
+    MapperSettings expected = hpfAddition();
+    expected.parameters.set("epsilon", 0.149);
+    const auto preview = window.gridView()->map();
+    QCOMPARE(preview->spec.cellSize, 0.1);
+    Mapper coarse(data_.ring, data_.fittingGrid(PoseSource::Truth, 0.1), expected);
+    coarse.mapDataset(data_);
+    QVERIFY(preview->level == coarse.snapshot().level);
+    QCOMPARE(window.gridView()->view(), view);
+    const auto* status = window.findChild<QLabel*>("remapStatus");
+    QVERIFY(status);
+    QVERIFY2(status->text().startsWith("preview at 10 cm"), qPrintable(status->text()));
+    if (const QByteArray dir = qgetenv("SONARGRID_SNAPSHOT_DIR"); !dir.isEmpty())
+      window.grab().save(QString::fromLocal8Bit(dir) + "/main-window-preview.png");
+    QVERIFY(window.waitForMap(60000));
+    QCOMPARE(window.gridView()->map()->spec.cellSize, 0.05);
+    QVERIFY(window.gridView()->map()->level == batchMap(data_, expected).level);
+    QCOMPARE(window.gridView()->view(), view);
   }
 
   void burstOfSliderMovesDeliversOnlyTheNewest() {
