@@ -160,6 +160,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   });
   connect(remap_, &ui::RemapController::mapped, this,
           [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64, bool incremental) {
+            fullMap_ = map;
             view_->setMap(std::move(map));
             onMapped(ms);
             // The panel shows what a re-map of the log costs, not a continuation while playing.
@@ -936,7 +937,24 @@ QString MainWindow::saveFileName(const QString& title, const QString& filter,
   return path;
 }
 
+bool MainWindow::mapComplete() {
+  // A preview (coarser cells) or a run still going must not end up in a file: wait for the map of
+  // the current settings.
+  if (remap_->busy()) {
+    QApplication::setOverrideCursor(Qt::WaitCursor);
+    waitForMap(10 * 60 * 1000);
+    QApplication::restoreOverrideCursor();
+  }
+  if (view_->map() && view_->map() == fullMap_) return true;
+  reportError(tr("Export"),
+              tr("The map of the current settings is not complete (only its preview is shown, or "
+                 "mapping failed). Export again once the status bar says \"re-mapped\"."),
+              false);
+  return false;
+}
+
 void MainWindow::exportViewPng() {
+  if (data_ && !mapComplete()) return;
   const QString path = saveFileName(tr("Export View as PNG"), tr("PNG images (*.png)"), ".png");
   if (path.isEmpty()) return;
   if (!view_->renderImage().save(path, "PNG"))
@@ -944,6 +962,7 @@ void MainWindow::exportViewPng() {
 }
 
 void MainWindow::exportViewSvg() {
+  if (data_ && !mapComplete()) return;
   const QString path = saveFileName(tr("Export View as SVG"), tr("SVG drawings (*.svg)"), ".svg");
   if (path.isEmpty()) return;
   QSvgGenerator svg;
@@ -962,21 +981,26 @@ void MainWindow::exportViewSvg() {
 }
 
 void MainWindow::exportMapPng() {
-  if (!view_->map()) return;
+  if (!view_->map() || !mapComplete()) return;
   const QString path = saveFileName(tr("Export Map as PNG"), tr("PNG images (*.png)"), ".png");
-  if (path.isEmpty()) return;
+  if (!path.isEmpty()) exportMapPngTo(path);
+}
+
+bool MainWindow::exportMapPngTo(const QString& path) {
+  if (!view_->map() || !mapComplete()) return false;
   try {
     PngOptions o;
     o.legend = true;
-    o.scale = std::max(1, static_cast<int>(std::lround(0.2 / view_->map()->spec.cellSize)));
-    writeMapPng(*view_->map(), QDir::toNativeSeparators(path).toStdString(), o);
+    o.scale = std::max(1, static_cast<int>(std::lround(0.2 / fullMap_->spec.cellSize)));
+    writeMapPng(*fullMap_, QDir::toNativeSeparators(path).toStdString(), o);
+    return true;
   } catch (const std::exception& e) {
-    reportError(tr("Export failed"), QString::fromStdString(e.what()), false);
+    return reportError(tr("Export failed"), QString::fromStdString(e.what()), false);
   }
 }
 
 void MainWindow::exportRosMap() {
-  if (!view_->map()) return;
+  if (!view_->map() || !mapComplete()) return;
   QString path =
       saveFileName(tr("Export Map for ROS map_server"), tr("map_server YAML (*.yaml)"), ".yaml");
   if (path.isEmpty()) return;

@@ -87,6 +87,9 @@ class MainWindow : public QMainWindow {
   // Blocks (running the event loop) until the newest requested map has arrived; false on timeout
   // or failure. For --screenshot and tests.
   bool waitForMap(int timeoutMs);
+  // File ▸ Export ▸ Map as PNG without the dialog: waits for a re-map in progress, then writes the
+  // full map of the current settings (never a preview). False when there is none or it failed.
+  bool exportMapPngTo(const QString& path);
 
   // What the user last chose (model, rule, pose, cell size), as QSettings remembers it.
   static sg::MapperSettings lastSettings();
@@ -145,6 +148,9 @@ class MainWindow : public QMainWindow {
   void openExample();
   void exportViewPng();
   void exportViewSvg();
+  // Waits for a re-map in progress; false (and says so) unless the view shows the full map of the
+  // current settings, not a preview.
+  bool mapComplete();
   void exportMapPng();
   void exportRosMap();
   void showUserGuide();
@@ -180,8 +186,9 @@ class MainWindow : public QMainWindow {
   QTimer* rememberSettingsTimer_ = nullptr;
   QTimer* beamSettingsTimer_ = nullptr;
   bool beamSettingsPending_ = false;
-  QElapsedTimer beamShown_;                  // since the beam view last took new settings
-  std::optional<PoseSource> scanShownPose_;  // the pose source of the scan drawn, if any
+  QElapsedTimer beamShown_;                      // since the beam view last took new settings
+  std::optional<PoseSource> scanShownPose_;      // the pose source of the scan drawn, if any
+  std::shared_ptr<const OccupancyMap> fullMap_;  // the last map delivered by mapped()
   static constexpr int kBeamIntervalMs = 150;
   QTimer* summaryTimer_ = nullptr;
   static constexpr int kSummaryIntervalMs = 250;

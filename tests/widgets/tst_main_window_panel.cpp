@@ -9,6 +9,7 @@
 #include <QSignalSpy>
 #include <QSlider>
 #include <QStandardPaths>
+#include <QTemporaryDir>
 #include <QtTest>
 
 #include "beam_model_view.h"
@@ -16,6 +17,7 @@
 #include "main_window.h"
 #include "parameter_panel.h"
 #include "remap_controller.h"
+#include "sonargrid/export/map_export.h"
 #include "sonargrid/io/sglog.h"
 #include "timeline.h"
 
@@ -130,6 +132,22 @@ class TestMainWindowPanel : public QObject {
     QCOMPARE(window.gridView()->map()->spec.cellSize, 0.05);
     QVERIFY(window.gridView()->map()->level == batchMap(data_, expected).level);
     QCOMPARE(window.gridView()->view(), view);
+
+    // Exporting while a preview is shown waits for the full map and writes it: the same bytes as
+    // the 5 cm batch map written with the window's options (legend, 0.2 m / 0.05 m = 4 px a cell).
+    QTest::keyClick(slider, Qt::Key_PageUp);  // ε 0.149 → 0.198 m
+    QVERIFY(previewed.wait(60000));
+    QCOMPARE(window.gridView()->map()->spec.cellSize, 0.1);
+    QTemporaryDir dir;
+    QVERIFY(window.exportMapPngTo(dir.filePath("map.png")));
+    expected.parameters.set("epsilon", 0.198);
+    PngOptions o;
+    o.legend = true;
+    o.scale = 4;
+    writeMapPng(batchMap(data_, expected), dir.filePath("want.png").toStdString(), o);
+    QFile got(dir.filePath("map.png")), want(dir.filePath("want.png"));
+    QVERIFY(got.open(QIODevice::ReadOnly) && want.open(QIODevice::ReadOnly));
+    QVERIFY(got.readAll() == want.readAll());
   }
 
   void burstOfSliderMovesDeliversOnlyTheNewest() {
