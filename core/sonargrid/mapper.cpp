@@ -307,7 +307,13 @@ bool Mapper::integrateBands(const std::vector<Beam>& beams, const std::atomic<bo
       }
     };
     std::vector<std::thread> helpers;
-    for (unsigned k = 1; k < count; ++k) helpers.emplace_back(guarded, k);
+    try {
+      for (unsigned k = 1; k < count; ++k) helpers.emplace_back(guarded, k);
+    } catch (...) {  // no thread to be had: stop those started (each thread's rows are its own)
+      halt(0);
+      for (std::thread& t : helpers) t.join();
+      throw;
+    }
     guarded(0);
     for (std::thread& t : helpers) t.join();
   };
