@@ -37,6 +37,12 @@ bool readingsInTimeOrder(const Dataset& data) {
   return true;
 }
 
+// A mapper for the log's fitting grid at `cellSize`: what a full run and a preview both start from.
+std::unique_ptr<Mapper> mapperFor(const Dataset& data, const MapperSettings& settings,
+                                  double cellSize) {
+  return std::make_unique<Mapper>(data.ring, data.fittingGrid(settings.pose, cellSize), settings);
+}
+
 std::size_t firstScanAfter(const Dataset& data, double until, std::size_t from) {
   for (std::size_t i = from; i < data.scans.size(); ++i)
     for (const Reading& r : data.scans[i].readings)
@@ -91,9 +97,9 @@ void RemapController::startPreview(quint64 generation,
     double ms = 0.0;
     try {
       const auto t0 = std::chrono::steady_clock::now();
-      Mapper mapper(data->ring, data->fittingGrid(settings.pose, cellSize), settings);
-      if (mapper.mapDataset(*data, until, cancel.get())) {
-        map = std::make_shared<const OccupancyMap>(mapper.snapshot());
+      const auto mapper = mapperFor(*data, settings, cellSize);
+      if (mapper->mapDataset(*data, until, cancel.get())) {
+        map = std::make_shared<const OccupancyMap>(mapper->snapshot());
         ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
                  .count();
       }
@@ -166,8 +172,7 @@ void RemapController::run(bool preview) {
         }
       } else {
         warm->mapper.reset();
-        auto mapper = std::make_unique<Mapper>(
-            data->ring, data->fittingGrid(settings.pose, cellSize), settings);
+        auto mapper = mapperFor(*data, settings, cellSize);
         interrupted = !mapper->mapDataset(*data, until, cancel.get());
         warm->mapper = std::move(mapper);
       }

@@ -134,7 +134,7 @@ constexpr std::size_t kSlots = 64;
 constexpr std::int64_t kEmptySlot = -1;
 // Snapshots of grids this big fill their layers on two threads.
 constexpr std::size_t kParallelSnapshotCells = 65536;
-// The height of the stripes of rows the threads share out (integrateBands).
+// The height of the stripes of rows the threads share out (integrateStripes).
 constexpr int kStripeRows = 8;
 
 // Waits until `value` differs from `old`. A footprint takes some 10 µs, so the wait is usually
@@ -182,7 +182,7 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
   }
   // Stripes of rows per thread, unless an observer must see whole footprints in order or the
   // model's footprints are too cheap to be worth cutting up (HIMM's axis line): then the pipeline.
-  if (!observer_ && model_->rasterisesRows()) return integrateBands(beams, cancel, workers + 1);
+  if (!observer_ && model_->rasterisesRows()) return integrateStripes(beams, cancel, workers + 1);
 
   Pipeline p;
   auto compute = [&](std::size_t i) {
@@ -254,8 +254,8 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
   return completed;
 }
 
-bool Mapper::integrateBands(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
-                            unsigned threads) {
+bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
+                              unsigned threads) {
   // Thread k takes every `threads`-th stripe of kStripeRows grid rows, from stripe k. It reads
   // every beam but rasterises only its own rows, and applies them to cells no other thread has:
   // each cell still sees the readings in log order, so the grid is bit-identical to the serial
@@ -264,31 +264,31 @@ bool Mapper::integrateBands(const std::vector<Beam>& beams, const std::atomic<bo
   // like share of nearly every footprint, wherever the robot is.
   const std::size_t n = beams.size();
   const bool totals = rule_->needsTotals();
-  std::vector<RowWindow> bands(threads);
+  std::vector<RowWindow> rows(threads);  // thread k's stripes
   for (unsigned k = 0; k < threads; ++k) {
-    bands[k].stripe = kStripeRows;
-    bands[k].period = static_cast<int>(threads);
-    bands[k].phase = static_cast<int>(k);
+    rows[k].stripe = kStripeRows;
+    rows[k].period = static_cast<int>(threads);
+    rows[k].phase = static_cast<int>(k);
   }
 
   // The threads in step (rules with totals, below).
-  struct alignas(64) Band {
+  struct alignas(64) Step {
     // Parts 0 .. posted − 1 have their total in `partial`; kHalted is set when the run stops.
     std::atomic<std::size_t> posted{0};
     std::vector<std::int64_t> partial;
   };
   constexpr std::size_t kHalted = std::size_t{1} << (std::numeric_limits<std::size_t>::digits - 1);
-  std::vector<Band> state;
+  std::vector<Step> state;
 
   std::atomic<bool> stop{false};
   std::exception_ptr failure;
-  std::atomic<std::size_t> done{n};  // the fewest readings any band has applied
+  std::atomic<std::size_t> done{n};  // the fewest readings any thread has applied
   auto halt = [&](std::size_t applied) {
     for (std::size_t d = done.load(); applied < d && !done.compare_exchange_weak(d, applied);) {
     }
     stop.store(true);
     // A thread waiting for another's part wakes on the change of its count, and sees kHalted.
-    for (Band& b : state) {
+    for (Step& b : state) {
       b.posted.fetch_or(kHalted);
       b.posted.notify_all();
     }
@@ -324,7 +324,7 @@ bool Mapper::integrateBands(const std::vector<Beam>& beams, const std::atomic<bo
       for (std::size_t i = 0; i < n; ++i) {
         if (stopping(i)) return halt(i);
         fp.clear();
-        model_->footprintRows(beams[i], grid_, *tables_, bands[k], fp);
+        model_->footprintRows(beams[i], grid_, *tables_, rows[k], fp);
         rule_->apply(fp);
         markObserved(fp);
       }
@@ -334,11 +334,11 @@ bool Mapper::integrateBands(const std::vector<Beam>& beams, const std::atomic<bo
     // part in a ring of kSlots until every thread has posted i; then it applies it with the sum.
     // Only the totals cross between cores. (A thread kSlots ahead waits; two threads cannot both
     // wait, as each would have to be kSlots ahead of the other.)
-    state = std::vector<Band>(bands.size());
-    for (Band& b : state) b.partial.assign(n, 0);
+    state = std::vector<Step>(rows.size());
+    for (Step& b : state) b.partial.assign(n, 0);
     enum class Part { Ready, NotYet, Halted };
     auto posted = [&](std::size_t i) {
-      for (const Band& b : state) {
+      for (const Step& b : state) {
         const std::size_t p = b.posted.load(std::memory_order_acquire);
         if (p & kHalted) return Part::Halted;
         if (p <= i) return Part::NotYet;
@@ -347,7 +347,7 @@ bool Mapper::integrateBands(const std::vector<Beam>& beams, const std::atomic<bo
     };
     // Waits until every thread has posted part i; false when the run stops.
     auto waitPosted = [&](std::size_t i) {
-      for (Band& b : state) {
+      for (Step& b : state) {
         for (std::size_t p = b.posted.load(std::memory_order_acquire); p <= i;
              p = b.posted.load(std::memory_order_acquire)) {
           waitForChange(b.posted, p);
@@ -356,12 +356,12 @@ bool Mapper::integrateBands(const std::vector<Beam>& beams, const std::atomic<bo
       return posted(i) == Part::Ready;
     };
     runThreads(threads, [&](unsigned k) {
-      Band& mine = state[k];
+      Step& mine = state[k];
       std::vector<Footprint> ring(kSlots);
       std::size_t applied = 0;
       auto applyNext = [&] {
         FootprintTotals sum;
-        for (const Band& b : state) sum.occupied += b.partial[applied];
+        for (const Step& b : state) sum.occupied += b.partial[applied];
         const Footprint& fp = ring[applied % kSlots];
         rule_->applyPart(fp, sum);
         markObserved(fp);
@@ -375,7 +375,7 @@ bool Mapper::integrateBands(const std::vector<Beam>& beams, const std::atomic<bo
         }
         Footprint& fp = ring[i % kSlots];
         fp.clear();
-        model_->footprintRows(beams[i], grid_, *tables_, bands[k], fp);
+        model_->footprintRows(beams[i], grid_, *tables_, rows[k], fp);
         mine.partial[i] = occupiedFixedPoint(fp);
         mine.posted.fetch_add(1, std::memory_order_release);  // keeps kHalted
         mine.posted.notify_all();

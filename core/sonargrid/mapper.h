@@ -67,7 +67,7 @@ class Mapper {
 
   // Batch mapping: resets, then integrates every scan (readings up to `until`). Checks `cancel`
   // every few hundred readings; returns false when it was cancelled (the grid is then unfinished:
-  // map again or reset before using it). A large log is mapped on several threads, in bands of
+  // map again or reset before using it). A large log is mapped on several threads, in stripes of
   // grid rows (or, with an observer, footprints computed ahead and applied in log order); every
   // cell still sees the readings in log order, so the result is bit-identical to integrate() scan
   // by scan.
@@ -88,8 +88,8 @@ class Mapper {
   void applyFootprint(const Footprint& footprint);
   void markObserved(const Footprint& footprint);
   bool integrateBeams(const std::vector<Beam>& beams, const std::atomic<bool>* cancel);
-  bool integrateBands(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
-                      unsigned threads);
+  bool integrateStripes(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
+                        unsigned threads);
 
   SonarRing ring_;
   GridSpec grid_;
