@@ -19,7 +19,7 @@ ParameterSet defaultParameters(const std::string& model, const std::string& rule
 }
 
 Mapper::Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings& settings)
-    : ring_(ring), grid_(grid), settings_(settings) {
+    : ring_(ring), settings_(settings) {
   model_ = makeSensorModel(settings.model);
   if (!model_) throw MapperError("unknown sensor model '" + settings.model + "'");
   rule_ = makeUpdateRule(settings.rule);
@@ -29,7 +29,7 @@ Mapper::Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings
     throw MapperError("model '" + settings.model + "' cannot be used with rule '" + settings.rule +
                       "': " + c.reason);
   }
-  if (grid_.width <= 0 || grid_.height <= 0 || !(grid_.cellSize > 0.0))
+  if (grid.width <= 0 || grid.height <= 0 || !(grid.cellSize > 0.0))
     throw MapperError("the grid is empty");
   // Parameters the caller did not give stay at their defaults.
   ParameterSet params = defaultParameters(settings.model, settings.rule);
@@ -39,13 +39,12 @@ Mapper::Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings
   settings_.parameters = params;
   model_->configure(params);
   rule_->configure(params);
-  tables_ = BeamTables::shared(grid_.cellSize, model_->reach(ring_.maxRange));
-  reset();
+  grid_ = Grid(grid, rule_->layout());  // unknown and unobserved
+  tables_ = BeamTables::shared(grid.cellSize, model_->reach(ring_.maxRange));
 }
 
 void Mapper::reset() {
-  rule_->reset(grid_.cellCount());
-  observed_.assign(grid_.cellCount(), 0);
+  grid_.clear();
   readings_ = 0;
   if (observer_) observer_->reset(grid_.cellCount());
 }
@@ -70,26 +69,12 @@ Beam Mapper::beamOf(const Pose2D& robot, const Reading& reading) const {
 
 Footprint Mapper::footprintOf(const Pose2D& robot, const Reading& reading) const {
   Footprint fp;
-  model_->footprint(beamOf(robot, reading), grid_, *tables_, fp);
+  model_->footprint(beamOf(robot, reading), grid_.spec(), *tables_, fp);
   return fp;
 }
 
-void Mapper::markObserved(const Footprint& footprint) {
-  // Four at a time: the loop is a load and a store per cell, and its own overhead was a third.
-  const CellEvidence* c = footprint.cells.data();
-  const CellEvidence* const end = c + footprint.cells.size();
-  std::uint8_t* const observed = observed_.data();
-  for (; end - c >= 4; c += 4) {
-    observed[c[0].cell] = 1;
-    observed[c[1].cell] = 1;
-    observed[c[2].cell] = 1;
-    observed[c[3].cell] = 1;
-  }
-  for (; c != end; ++c) observed[c->cell] = 1;
-}
-
 void Mapper::applyFootprint(const Footprint& footprint) {
-  rule_->apply(footprint);
+  rule_->apply(footprint, grid_);
   if (observer_) observer_->observe(footprint);
   markObserved(footprint);
   ++readings_;
@@ -101,7 +86,7 @@ void Mapper::integrate(const Scan& scan, double until) {
   for (const Reading& r : scan.readings) {
     if (r.time > until) continue;
     scratch_.clear();
-    model_->footprint(beamOf(robot, r), grid_, *tables_, scratch_);
+    model_->footprint(beamOf(robot, r), grid_.spec(), *tables_, scratch_);
     applyFootprint(scratch_);
   }
 }
@@ -175,7 +160,7 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
     for (std::size_t i = 0; i < n; ++i) {
       if (cancel && i % kCancelStride == 0 && cancel->load(std::memory_order_relaxed)) return false;
       scratch_.clear();
-      model_->footprint(beams[i], grid_, *tables_, scratch_);
+      model_->footprint(beams[i], grid_.spec(), *tables_, scratch_);
       applyFootprint(scratch_);
     }
     return true;
@@ -188,7 +173,7 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
   auto compute = [&](std::size_t i) {
     Pipeline::Slot& slot = p.slots[i % kSlots];
     slot.footprint.clear();
-    model_->footprint(beams[i], grid_, *tables_, slot.footprint);
+    model_->footprint(beams[i], grid_.spec(), *tables_, slot.footprint);
     slot.holds.store(static_cast<std::int64_t>(i), std::memory_order_release);
     slot.holds.notify_one();
   };
@@ -324,8 +309,8 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
       for (std::size_t i = 0; i < n; ++i) {
         if (stopping(i)) return halt(i);
         fp.clear();
-        model_->footprintRows(beams[i], grid_, *tables_, rows[k], fp);
-        rule_->apply(fp);
+        model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
+        rule_->apply(fp, grid_);
         markObserved(fp);
       }
     });
@@ -363,7 +348,7 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
         FootprintTotals sum;
         for (const Step& b : state) sum.occupied += b.partial[applied];
         const Footprint& fp = ring[applied % kSlots];
-        rule_->applyPart(fp, sum);
+        rule_->applyPart(fp, sum, grid_);
         markObserved(fp);
         ++applied;
       };
@@ -375,7 +360,7 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
         }
         Footprint& fp = ring[i % kSlots];
         fp.clear();
-        model_->footprintRows(beams[i], grid_, *tables_, rows[k], fp);
+        model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
         mine.partial[i] = occupiedFixedPoint(fp);
         mine.posted.fetch_add(1, std::memory_order_release);  // keeps kHalted
         mine.posted.notify_all();
@@ -398,7 +383,7 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
 
 OccupancyMap Mapper::snapshot() const {
   OccupancyMap m;
-  m.spec = grid_;
+  m.spec = grid_.spec();
   m.model = settings_.model;
   m.rule = settings_.rule;
   const std::size_t n = grid_.cellCount();
@@ -406,15 +391,16 @@ OccupancyMap Mapper::snapshot() const {
   m.native.resize(n);
   m.level.resize(n);
   m.filled.resize(n);
-  m.observed = observed_;
+  m.observed.resize(n);
+  grid_.copyObserved(0, n, m.observed.data());
   // Half the cells on a second thread: a 5 cm grid of a room and its ghosts is 200 000 cells and
   // this is on the path from a slider to the picture.
   if (n >= kParallelSnapshotCells && std::thread::hardware_concurrency() > 1) {
-    std::thread other([&] { rule_->writeLayers(m, n / 2, n); });
-    rule_->writeLayers(m, 0, n / 2);
+    std::thread other([&] { rule_->writeLayers(grid_, m, n / 2, n); });
+    rule_->writeLayers(grid_, m, 0, n / 2);
     other.join();
   } else {
-    rule_->writeLayers(m, 0, n);
+    rule_->writeLayers(grid_, m, 0, n);
   }
   return m;
 }

@@ -1,5 +1,5 @@
 #pragma once
-// Mapper = SensorModel × UpdateRule × parameters × GridSpec (DESIGN.md, "Data flow"). Batch mapping
+// Mapper = SensorModel × UpdateRule × parameters × Grid (DESIGN.md, "Data flow"). Batch mapping
 // (a whole log, or up to time t) is incremental mapping run over the scans in order, so both give
 // bit-identical grids, and the result depends on nothing but the inputs.
 
@@ -14,6 +14,7 @@
 #include "sonargrid/beam_tables.h"
 #include "sonargrid/dataset.h"
 #include "sonargrid/footprint.h"
+#include "sonargrid/grid.h"
 #include "sonargrid/models/sensor_model.h"
 #include "sonargrid/occupancy_map.h"
 #include "sonargrid/parameters.h"
@@ -53,7 +54,9 @@ class Mapper {
   // empty grid.
   Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings& settings);
 
-  const GridSpec& grid() const { return grid_; }
+  // The grid's limits and its storage.
+  const GridSpec& grid() const { return grid_.spec(); }
+  const Grid& storage() const { return grid_; }
   const MapperSettings& settings() const { return settings_; }
   const SensorModel& model() const { return *model_; }
   const UpdateRule& rule() const { return *rule_; }
@@ -86,18 +89,17 @@ class Mapper {
  private:
   Beam beamOf(const Pose2D& robot, const Reading& reading) const;
   void applyFootprint(const Footprint& footprint);
-  void markObserved(const Footprint& footprint);
+  void markObserved(const Footprint& footprint) { grid_.markWritten(footprint); }
   bool integrateBeams(const std::vector<Beam>& beams, const std::atomic<bool>* cancel);
   bool integrateStripes(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
                         unsigned threads);
 
   SonarRing ring_;
-  GridSpec grid_;
   MapperSettings settings_;
   std::unique_ptr<SensorModel> model_;
   std::unique_ptr<UpdateRule> rule_;
+  Grid grid_;
   std::shared_ptr<const BeamTables> tables_;
-  std::vector<std::uint8_t> observed_;
   Footprint scratch_;
   FootprintObserver* observer_ = nullptr;
   std::size_t readings_ = 0;
