@@ -1,10 +1,16 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The grid's storage: its limits (GridSpec) and the update rule's state for every cell, plus which
-// cells any reading wrote (the storage / limits / inserter split of Cartographer's Grid2D,
+// cells any reading wrote and which rows changed since the last snapshot (docs/models.md, "Batch,
+// incremental and live mapping"; the storage / limits / inserter split of Cartographer's Grid2D,
 // MapLimits and range data inserter). The grid knows nothing of what its cells mean: the rule
 // declares their layout and the value of a cell nobody has seen, and is the only one to read or
 // write them.
+//
+// A grid can grow to cover new readings. It grows by whole cells (the origin moves by a whole
+// number of cells), every cell keeps its value at its world position, and the new cells are
+// unknown and unobserved. It grows with slack, so a robot that drives on a little at a time makes
+// it reallocate a logarithmic number of times, not per scan.
 
 #include <array>
 #include <cstddef>
@@ -25,6 +31,10 @@ class GridError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// The most cells a grid may grow to: the CLI's bound on a map's size (docs/cli.md), 3.2 GB of
+// 16-byte cells.
+inline constexpr std::size_t kMaxGrowCells = 200'000'000;
 
 // What a rule keeps per cell, in one or more planes: each plane holds one value of a trivially
 // copyable type per cell, and says its value in a cell nobody has seen. Parts of a cell's state
@@ -80,11 +90,20 @@ class CellLayout {
   std::size_t count_ = 0;
 };
 
+// Rows [begin, end) of a grid; empty when begin == end.
+struct RowBand {
+  int begin = 0;
+  int end = 0;
+  bool empty() const { return begin >= end; }
+  bool operator==(const RowBand&) const = default;
+};
+
 class Grid {
  public:
   // A grid of no cells, to be given a real one by assignment.
   Grid() = default;
-  // Every cell unknown and unobserved. Throws GridError for an empty grid.
+  // Every cell unknown and unobserved, every row dirty. Throws GridError for an empty grid. (Its
+  // size is the caller's to bound; kMaxGrowCells bounds only growth.)
   Grid(const GridSpec& spec, const CellLayout& layout);
   Grid(Grid&&) noexcept = default;
   Grid& operator=(Grid&&) noexcept = default;
@@ -112,17 +131,18 @@ class Grid {
   // observed() of cells [begin, end) as 0 or 1 into out[begin, end) (OccupancyMap::observed).
   void copyObserved(std::size_t begin, std::size_t end, std::uint8_t* out) const;
 
-  // Every cell unknown and unobserved again.
+  // Every cell unknown and unobserved again (the spec stays); every row dirty.
   void clear();
 
-  // Marks the footprint's cells observed; the rule writes the values. Several threads may mark
-  // footprints whose cells lie in disjoint rows at once.
+  // Marks the footprint's cells observed and written since the last snapshot (so their rows are
+  // dirty); the rule writes the values. One store per cell, as marking them observed alone costs.
+  // Several threads may mark footprints whose cells lie in disjoint rows at once.
   void markWritten(const Footprint& footprint) {
     // Four at a time: the loop is a load and a store per cell, and its own overhead was a third.
     const CellEvidence* c = footprint.cells.data();
     const CellEvidence* const end = c + footprint.cells.size();
     std::uint8_t* const marks = marks_.data();
-    constexpr std::uint8_t kBoth = kObserved;
+    constexpr std::uint8_t kBoth = kObserved | kWritten;
     for (; end - c >= 4; c += 4) {
       marks[c[0].cell] = kBoth;
       marks[c[1].cell] = kBoth;
@@ -132,6 +152,22 @@ class Grid {
     for (; c != end; ++c) marks[c->cell] = kBoth;
   }
 
+  // Whether every cell of the world box [lo, hi] is in the grid.
+  bool covers(const Position& lo, const Position& hi) const;
+  // Grows the grid, if it must, until it covers the world box [lo, hi], with slack: a side that
+  // must grow grows by at least half the grid's size along it, unless that would pass
+  // kMaxGrowCells. Returns whether the spec changed (then every row is dirty). Throws GridError
+  // when the box needs more than kMaxGrowCells cells or is not finite; the grid is then unchanged.
+  bool growToCover(const Position& lo, const Position& hi);
+
+  // Dirty rows: those written since the last takeDirtyRuns(), or every row after construction,
+  // clear() or growth. Finding them reads a byte per cell (the marks), which is what keeps
+  // markWritten() at one store per cell; a snapshot then computes only the dirty rows' cells.
+  bool rowDirty(int row) const;
+  std::vector<int> dirtyRows() const;
+  // The dirty rows as runs of consecutive rows, lowest first; afterwards no row is dirty.
+  std::vector<RowBand> takeDirtyRuns();
+
  private:
   struct AlignedDelete {
     void operator()(std::byte* p) const {
@@ -140,6 +176,11 @@ class Grid {
   };
   using Storage = std::unique_ptr<std::byte[], AlignedDelete>;
 
+  // Cells a box lacks on each side.
+  struct Need {
+    double left, right, bottom, top;
+  };
+  Need need(const Position& lo, const Position& hi) const;
   static Storage allocate(std::size_t cells, std::size_t bytes);
   static void checkType(bool matches);
   // Writes plane `plane`'s unknown value into cells [begin, end) of `storage`.
@@ -148,9 +189,10 @@ class Grid {
   GridSpec spec_;
   CellLayout layout_;
   std::array<Storage, CellLayout::kMaxPlanes> planes_;
-  // Per cell: kObserved once any reading wrote it.
-  static constexpr std::uint8_t kObserved = 1;
+  // Per cell: kObserved once any reading wrote it, kWritten while that is news to a snapshot.
+  static constexpr std::uint8_t kObserved = 1, kWritten = 2;
   std::vector<std::uint8_t> marks_;
+  bool allDirty_ = true;
 };
 
 }  // namespace sg

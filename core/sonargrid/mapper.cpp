@@ -405,4 +405,73 @@ OccupancyMap Mapper::snapshot() const {
   return m;
 }
 
+bool Mapper::grow(const Position& lo, const Position& hi) {
+  const GridSpec before = grid_.spec();
+  if (grid_.covers(lo, hi)) return false;
+  if (observer_) {
+    throw MapperError(
+        "the grid must grow to hold the new readings, and a footprint observer "
+        "counts the cells of its present limits; map the log in one batch instead");
+  }
+  try {
+    grid_.growToCover(lo, hi);
+  } catch (const GridError& e) {
+    throw MapperError(e.what());
+  }
+  return grid_.spec() != before;
+}
+
+bool Mapper::reserve(const Position& lo, const Position& hi) {
+  return grow(lo, hi);
+}
+
+bool Mapper::append(std::span<const Scan> scans, double until, const std::atomic<bool>* cancel) {
+  std::vector<Beam> beams;
+  for (const Scan& scan : scans) {
+    if (settings_.pose == PoseSource::Truth && !scan.truth) {
+      throw MapperError("the scan at t = " + std::to_string(scan.time) +
+                        " s has no true pose; map with odometry (--pose odom)");
+    }
+    const Pose2D& robot = settings_.pose == PoseSource::Truth ? *scan.truth : scan.odometry;
+    if (!robot.position.allFinite() || !std::isfinite(robot.heading)) {
+      throw MapperError("the scan at t = " + std::to_string(scan.time) +
+                        " s has a pose that is not a finite number");
+    }
+    for (const Reading& r : scan.readings)
+      if (r.time <= until) beams.push_back(beamOf(robot, r));
+  }
+  if (beams.empty()) return true;
+  // The model writes no further than its reach from the sensor (cell centres within it); two cells
+  // more hold the cells those centres lie in, whatever the rounding. The grid grows once for the
+  // whole batch: growth keeps every cell, so it is the same as growing before each reading.
+  const double reach = model_->reach(ring_.maxRange) + 2.0 * grid_.spec().cellSize;
+  Position lo = beams.front().sensor.position, hi = lo;
+  for (const Beam& b : beams) {
+    lo = lo.cwiseMin(b.sensor.position);
+    hi = hi.cwiseMax(b.sensor.position);
+  }
+  grow(Position(lo.x() - reach, lo.y() - reach), Position(hi.x() + reach, hi.y() + reach));
+  return integrateBeams(beams, cancel);
+}
+
+const OccupancyMap& Mapper::liveMap(RowBand* rewritten) {
+  const GridSpec& spec = grid_.spec();
+  const std::vector<RowBand> runs = grid_.takeDirtyRuns();
+  if (live_.spec != spec || live_.probability.size() != grid_.cellCount()) {
+    live_ = snapshot();
+    if (rewritten) *rewritten = RowBand{0, spec.height};
+    return live_;
+  }
+  const auto width = static_cast<std::size_t>(spec.width);
+  for (const RowBand& run : runs) {
+    const std::size_t begin = static_cast<std::size_t>(run.begin) * width;
+    const std::size_t end = static_cast<std::size_t>(run.end) * width;
+    rule_->writeLayers(grid_, live_, begin, end);
+    grid_.copyObserved(begin, end, live_.observed.data());
+  }
+  if (rewritten)
+    *rewritten = runs.empty() ? RowBand{} : RowBand{runs.front().begin, runs.back().end};
+  return live_;
+}
+
 }  // namespace sg
