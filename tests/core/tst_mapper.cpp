@@ -9,6 +9,7 @@
 
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/mapper.h"
+#include "sonargrid/scan_source.h"
 
 using namespace sg;
 
@@ -90,6 +91,7 @@ class TstMapper : public QObject {
   void growthKeepsEveryValue();
   void dirtyRowsAreTheRowsWritten_data();
   void dirtyRowsAreTheRowsWritten();
+  void streamFromAnotherThread();
   void appendErrors();
 };
 
@@ -557,6 +559,38 @@ void TstMapper::dirtyRowsAreTheRowsWritten() {
   const std::vector<int> dirty = m.storage().dirtyRows();
   QCOMPARE(dirty, std::vector<int>(rows.begin(), rows.end()));
   QVERIFY(sameLayers(m.liveMap(), m.snapshot()));
+}
+
+void TstMapper::streamFromAnotherThread() {
+  // A link thread appends the room log to a scan source a few scans at a time while this thread
+  // maps whatever has arrived: the map equals the batch map of the whole log on the final limits.
+  const Dataset& d = room();
+  MapperSettings s;
+  s.model = "murphy";
+  s.rule = "logodds";
+  auto source = std::make_shared<ScanSource>(d.name, d.ring);
+  std::thread link([source, &d] {
+    for (std::size_t k = 0; k < d.scans.size(); k += 5) {
+      const auto end =
+          d.scans.begin() + static_cast<std::ptrdiff_t>(std::min(k + 5, d.scans.size()));
+      source->append(std::vector<Scan>(d.scans.begin() + static_cast<std::ptrdiff_t>(k), end));
+    }
+    source->finish();
+  });
+  Mapper m(d.ring, seedGrid(d), s);
+  std::size_t done = 0;
+  for (bool complete = false; !complete;) {
+    complete = source->complete();
+    const ScanPrefix p = source->prefix();
+    for (const std::span<const Scan> part : p.spans(done, p.size())) QVERIFY(m.append(part));
+    done = p.size();
+    m.liveMap();
+  }
+  link.join();
+  QCOMPARE(done, d.scans.size());
+  Mapper batch(d.ring, m.grid(), s);
+  QVERIFY(batch.mapDataset(d));
+  QVERIFY(sameLayers(batch.snapshot(), m.liveMap()));
 }
 
 void TstMapper::appendErrors() {
