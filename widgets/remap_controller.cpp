@@ -262,7 +262,10 @@ RemapController::Outcome RemapController::mapLoaded(WarmMapper& warm, const Requ
     warm.mapper.reset();
     return out;
   }
-  out.map = std::make_shared<const OccupancyMap>(warm.mapper->liveMap());
+  // A continued map recomputes the rows its readings wrote; a new one is computed whole and
+  // handed over without a copy.
+  out.map = std::make_shared<const OccupancyMap>(out.incremental ? warm.mapper->liveMap()
+                                                                 : warm.mapper->snapshot());
   out.ms = msSince(t0);
   warm.nextScan =
       firstScanAfter(data.scans, data.scans.size(), until, out.incremental ? warm.nextScan : 0);
