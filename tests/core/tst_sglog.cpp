@@ -281,7 +281,7 @@ void TstSglog::rangeAtMaxIsNoEcho() {
 void TstSglog::parseAccepted() {
   // Everything docs/formats.md allows but the writer never produces: BOM, CRLF, comments and
   // blank lines everywhere (after 'end' too), tabs, header records out of order, number
-  // spellings, no final LF.
+  // spellings (printf's "+00.000", "-00.000" and "5.0E+00" among them), no final LF.
   const QByteArray text =
       "\xEF\xBB\xBFsglog 1   # first line\r\n"
       "# comment\n"
@@ -299,7 +299,7 @@ void TstSglog::parseAccepted() {
       "scan -2. 1 2 3 none\r\n"
       "r 1 none -2\n"
       "r 0 0.05 -1.5\n"
-      "scan -2 0 0 0 4 5 6\n"
+      "scan -2 +00.000 -00.000 +0.000e+00 +04.000 5.0E+00 +6\n"
       "r\t1\t2.5\t7\n"
       "\t end\t# closing record, indented\r\n"
       "\n"
@@ -383,7 +383,8 @@ void TstSglog::malformed_data() {
              "t.sglog:7: sonar: expected 4 fields after 'sonar' (index x y heading), found 3");
   QTest::addRow("sonar heading inf")
       << header(ranges + "sonar 0 0 0 inf\n")
-      << QByteArray("t.sglog:7: heading: expected an angle in radians, found 'inf'");
+      << QByteArray(
+             "t.sglog:7: heading: expected an angle in radians, found 'inf', which is not finite");
   QTest::addRow("aperture twice") << header("aperture 0.5\naperture 0.6\n")
                                   << QByteArray(
                                          "t.sglog:5: aperture: expected one 'aperture' line, found "
@@ -393,9 +394,10 @@ void TstSglog::malformed_data() {
                                                 "t.sglog:4: expected a header record (name, robot, "
                                                 "aperture, min_range, max_range, sonar or "
                                                 "end_header), found 'foo'");
-  QTest::addRow("aperture nan")
-      << header("aperture nan\n")
-      << QByteArray("t.sglog:4: aperture: expected an angle in radians > 0 and <= pi, found 'nan'");
+  QTest::addRow("aperture nan") << header("aperture nan\n")
+                                << QByteArray(
+                                       "t.sglog:4: aperture: expected an angle in radians > 0 and "
+                                       "<= pi, found 'nan', which is not finite");
   QTest::addRow("aperture too wide")
       << header("aperture 4\n")
       << QByteArray("t.sglog:4: aperture: expected an angle in radians > 0 and <= pi, found '4'");
@@ -448,12 +450,14 @@ void TstSglog::malformed_data() {
   QTest::addRow("range negative")
       << kHeader + "scan 0 0 0 0 none\nr 0 -1 0\n"
       << QByteArray("t.sglog:11: range: expected a number of metres >= 0 or 'none', found '-1'");
-  QTest::addRow("range nan")
-      << kHeader + "scan 0 0 0 0 none\nr 0 nan 0\n"
-      << QByteArray("t.sglog:11: range: expected a number of metres >= 0 or 'none', found 'nan'");
-  QTest::addRow("range inf")
-      << kHeader + "scan 0 0 0 0 none\nr 0 inf 0\n"
-      << QByteArray("t.sglog:11: range: expected a number of metres >= 0 or 'none', found 'inf'");
+  QTest::addRow("range nan") << kHeader + "scan 0 0 0 0 none\nr 0 nan 0\n"
+                             << QByteArray(
+                                    "t.sglog:11: range: expected a number of metres >= 0 or "
+                                    "'none', found 'nan', which is not finite");
+  QTest::addRow("range inf") << kHeader + "scan 0 0 0 0 none\nr 0 inf 0\n"
+                             << QByteArray(
+                                    "t.sglog:11: range: expected a number of metres >= 0 or "
+                                    "'none', found 'inf', which is not finite");
   QTest::addRow("sonar not in ring")
       << kHeader + "scan 0 0 0 0 none\nr 2 1 0\n"
       << QByteArray("t.sglog:11: sonar: expected a sonar index 0..1, found '2'");
@@ -468,7 +472,8 @@ void TstSglog::malformed_data() {
       << QByteArray("t.sglog:11: r: expected 3 fields after 'r' (sonar range time), found 2");
   QTest::addRow("reading time nan")
       << kHeader + "scan 0 0 0 0 none\nr 0 1 nan\n"
-      << QByteArray("t.sglog:11: time: expected a time in seconds, found 'nan'");
+      << QByteArray(
+             "t.sglog:11: time: expected a time in seconds, found 'nan', which is not finite");
   QTest::addRow("time backwards") << kHeader + "scan 2.5 0 0 0 none\nscan 2 0 0 0 none\n"
                                   << QByteArray(
                                          "t.sglog:11: time: expected a time >= 2.5 (the previous "
@@ -484,21 +489,31 @@ void TstSglog::malformed_data() {
                                           "t.sglog:10: scan: expected 'none' or a true pose "
                                           "(true_x true_y true_theta) after theta, "
                                           "found '1' alone");
-  QTest::addRow("truth nan") << kHeader + "scan 0 0 0 0 1 nan 0\n"
-                             << QByteArray(
-                                    "t.sglog:10: true_y: expected a number of metres, found 'nan'");
+  QTest::addRow("truth nan")
+      << kHeader + "scan 0 0 0 0 1 nan 0\n"
+      << QByteArray(
+             "t.sglog:10: true_y: expected a number of metres, found 'nan', which is not finite");
   QTest::addRow("leftmost bad field")
       << kHeader + "scan 0 x y 0 none\n"
       << QByteArray("t.sglog:10: x: expected a number of metres, found 'x'");
   QTest::addRow("number with unit")
       << kHeader + "scan 0 1.5m 0 0 none\n"
       << QByteArray("t.sglog:10: x: expected a number of metres, found '1.5m'");
-  QTest::addRow("plus sign") << kHeader + "scan +1 0 0 0 none\n"
+  // printf's '+' flag writes "+1.000"; a second sign is no number.
+  QTest::addRow("two signs") << kHeader + "scan +-1 0 0 0 none\n"
                              << QByteArray(
-                                    "t.sglog:10: time: expected a time in seconds, found '+1'");
+                                    "t.sglog:10: time: expected a time in seconds, found '+-1'");
+  QTest::addRow("lone plus") << kHeader + "scan 0 + 0 0 none\n"
+                             << QByteArray("t.sglog:10: x: expected a number of metres, found '+'");
+  QTest::addRow("signed inf") << kHeader + "scan 0 0 -INF 0 none\n"
+                              << QByteArray(
+                                     "t.sglog:10: y: expected a number of metres, found '-INF', "
+                                     "which is not finite");
   QTest::addRow("number overflow")
       << kHeader + "scan 0 0 0 1e400 none\n"
-      << QByteArray("t.sglog:10: theta: expected an angle in radians, found '1e400'");
+      << QByteArray(
+             "t.sglog:10: theta: expected an angle in radians, found '1e400', which is out of the "
+             "range of a double");
   QTest::addRow("unknown body record")
       << kHeader + "odom 1 2 3\n"
       << QByteArray("t.sglog:10: expected a body record ('scan', 'r' or 'end'), found 'odom'");
