@@ -2,7 +2,6 @@
 // atomic replacement and robustness against garbage input.
 
 #include <QDir>
-#include <QElapsedTimer>
 #include <QFile>
 #include <QTemporaryDir>
 #include <QtTest>
@@ -112,7 +111,6 @@ class TstSglog : public QObject {
   void atomicWriteOverDirectory();
   void garbageNeverCrashes();
   void mutatedLogsNeverCrash();
-  void parseSpeed();
 };
 
 void TstSglog::logErrorFormat() {
@@ -908,29 +906,6 @@ void TstSglog::mutatedLogsNeverCrash() {
     }
   }
   QVERIFY(accepted < 3000);  // the mutations did reach the error paths
-}
-
-void TstSglog::parseSpeed() {
-  // Informative only (no threshold: machines differ). The report's figure comes from a larger run.
-  sg::Dataset d;
-  d.ring = sg::SonarRing::pioneer3dx();
-  for (int i = 0; i < 12500; ++i) {
-    std::vector<sg::Reading> rs;
-    for (std::uint16_t k = 0; k < 16; ++k)
-      rs.push_back({k, 0.2 + 0.0137 * ((i * 16 + k) % 331), i * 0.1 + k * 0.004});
-    d.scans.push_back(
-        makeScan(i * 0.1, sg::Pose2D(i * 0.01, i * -0.003, i * 0.001), std::nullopt, rs));
-  }
-  const std::string text = writeToString(d);
-  QElapsedTimer timer;
-  timer.start();
-  std::istringstream in(text);
-  const sg::Dataset back = sg::parseSglog(in, "speed");
-  const qint64 ns = timer.nsecsElapsed();
-  QVERIFY(back == d);
-  const double lines = static_cast<double>(d.readingCount() + d.scans.size());
-  qInfo("parsed %.0f body lines (%zu bytes) in %.1f ms: %.2f million lines/s", lines, text.size(),
-        static_cast<double>(ns) / 1e6, lines / (static_cast<double>(ns) / 1e9) / 1e6);
 }
 
 QTEST_GUILESS_MAIN(TstSglog)
