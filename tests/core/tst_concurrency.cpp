@@ -493,7 +493,7 @@ void TstConcurrency::failureReachesTheCaller_data() {
     for (const char* f : r.failures) {
       for (unsigned threads : {2u, 3u}) {
         if (QByteArray(f) == "start 2" && threads < 3) continue;  // only one start to fail
-        QTest::addRow("%s, %s, %u threads", r.path, f, threads) << r.path << f << threads;
+        QTest::addRow("%s, %s, threads %u", r.path, f, threads) << r.path << f << threads;
       }
     }
   }
