@@ -10,6 +10,7 @@
 #include "commands.h"
 #include "map_options.h"
 #include "sonargrid/export/map_export.h"
+#include "thread_flags.h"
 
 namespace sg::cli {
 namespace {
@@ -21,6 +22,7 @@ MapOptions parseMapOptions(Arguments& args) {
   MapOptions o;
   o.log = args.required("--log");
   o.read = parseLogOptions(args);
+  applyThreadOptions(args);
   const std::string pose = args.value("--pose").value_or("odom");
   if (pose == "odom")
     o.settings.pose = PoseSource::Odometry;

@@ -19,6 +19,7 @@
 #include "reproduce.h"
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/reference/read_reference.h"
+#include "thread_flags.h"
 
 namespace sg::cli {
 namespace reproduce {
@@ -224,7 +225,7 @@ int runReproduce(Arguments& args) {
   const bool json = args.flag("--json");
   const bool progress = args.flag("--progress");
   ctx.sets = static_cast<std::size_t>(args.integer("--sets", 0, 0, 1440));
-  ctx.threads = static_cast<unsigned>(args.integer("--threads", 0, 0, 256));
+  applyThreadOptions(args);
   if (!paper) {
     // A word left over is most likely a misspelt paper; finish() names it.
     try {
@@ -236,8 +237,7 @@ int runReproduce(Arguments& args) {
     throw UsageError("reproduce needs a paper: raschke1990, osullivan or arafat");
   }
   args.finish();
-  if (*paper != "arafat" && (ctx.sets != 0 || ctx.threads != 0))
-    throw UsageError("--sets and --threads shape the arafat sweep only");
+  if (*paper != "arafat" && ctx.sets != 0) throw UsageError("--sets shapes the arafat sweep only");
   ctx.datasets = datasets ? fs::path(*datasets) : defaultDatasets();
   if (!fs::is_directory(ctx.datasets))
     throw InputError("--datasets " + ctx.datasets.string() + ": not a directory");

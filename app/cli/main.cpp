@@ -17,7 +17,7 @@ commands:
                              list sensor models, update rules, their parameters and allowed pairs
   map --log FILE --model M --rule R [--pose odom|truth] [--set NAME=VALUE]...
       [--cell METRES] [--until SECONDS] [--png FILE [--legend] [--scale N]]
-      [--ros-map BASENAME] [--json]
+      [--ros-map BASENAME] [--threads N] [--json]
                              build an occupancy grid from a log
   score --reference REF (--log FILE [map flags] | --map FILE.yaml)
       [--metrics LIST] [--pairs N] [--seed N] [--json]
@@ -42,6 +42,10 @@ commands:
 log flags (every command that reads a log):
   --format auto|sglog|carmen|player|csv   --lenient   --robot PRESET|GEOMETRY_FILE
   --columns SPEC   --poses FILE           (docs/formats.md)
+
+threads (map, score --log, goodness, reproduce): --threads N, else the environment
+  variable SONARGRID_THREADS, else the CPUs the process may use (its affinity mask);
+  results are the same for any N
 
 See docs/cli.md for the full contract.
 )";

@@ -1,7 +1,8 @@
 #pragma once
 // The flags every command that builds a map shares (`map`, `score`, `goodness`):
-// --log, --pose, --model, --rule, --set, --cell, --until, and the log-reading flags --format,
-// --lenient, --robot, --columns, --poses (log_flags.cpp) that every command reading a log takes.
+// --log, --pose, --model, --rule, --set, --cell, --until, --threads (thread_flags.h), and the
+// log-reading flags --format, --lenient, --robot, --columns, --poses (log_flags.cpp) that every
+// command reading a log takes.
 
 #include <limits>
 #include <optional>
@@ -23,8 +24,9 @@ struct MapOptions {
   double until = std::numeric_limits<double>::infinity();
 };
 
-// Consumes the map flags; throws UsageError for bad, missing or unknown ones (model, rule, --set)
-// and InputError for an incompatible model/rule pair.
+// Consumes the map flags; throws UsageError for bad, missing or unknown ones (model, rule, --set,
+// --threads, SONARGRID_THREADS) and InputError for an incompatible model/rule pair. --threads sets
+// the thread policy for the rest of the command.
 MapOptions parseMapOptions(Arguments& args);
 
 // Consumes --format, --lenient, --robot, --columns and --poses; throws UsageError for bad values

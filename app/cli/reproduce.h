@@ -25,7 +25,6 @@ struct Context {
   fs::path out;       // DIR/<paper> is written
   bool progress = false;
   std::size_t sets = 0;  // arafat sweep: 0 = all 1440, else that many spread evenly over the grid
-  unsigned threads = 0;  // arafat sweep: 0 = one per hardware thread
 };
 
 // Each writes its files into ctx.out / <paper> and returns its part of the summary JSON.

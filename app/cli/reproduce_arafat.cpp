@@ -121,7 +121,6 @@ Json runArafat(const Context& ctx) {
   sweep.model = "parameterized";
   sweep.rule = kRule;
   sweep.grid = grid;
-  sweep.threads = ctx.threads;
   const auto t0 = std::chrono::steady_clock::now();
   SweepOutcome outcome;
   try {

@@ -12,6 +12,8 @@
 #include <iostream>
 
 #include "main_window.h"
+#include "preferences.h"
+#include "sonargrid/concurrency.h"
 #include "sonargrid/models/sensor_model.h"
 #include "sonargrid/rules/update_rule.h"
 
@@ -109,6 +111,15 @@ int main(int argc, char** argv) {
        QStringLiteral("FILE")},
   });
   parser.process(app);
+
+  // The Mapping threads preference; a bad SONARGRID_THREADS is said once here (the core passes it
+  // over), and the Preferences dialog says it again.
+  try {
+    sg::environmentThreadCount();
+  } catch (const sg::ThreadCountError& e) {
+    std::cerr << "sonargrid: " << e.what() << "; using the CPUs this process may use\n";
+  }
+  sg::app::applyMappingThreads();
 
   sg::MapperSettings settings;
   double cell = sg::app::MainWindow::lastCellSize();

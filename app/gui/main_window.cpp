@@ -40,6 +40,7 @@
 #include "csv_import_dialog.h"
 #include "datasets_location.h"
 #include "parameter_panel.h"
+#include "preferences.h"
 #include "remap_controller.h"
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/io/log_reader.h"
@@ -410,6 +411,12 @@ void MainWindow::createMenus() {
     connect(a, &QAction::triggered, this, [this, p] { choosePose(p); });
   }
   rebuildMappingMenu();
+
+  QMenu* settings = menuBar()->addMenu(tr("&Settings"));
+  QAction* preferences = settings->addAction(tr("&Preferences…"));
+  preferences->setMenuRole(QAction::PreferencesRole);
+  preferences->setShortcut(QKeySequence::Preferences);
+  connect(preferences, &QAction::triggered, this, [this] { PreferencesDialog(this).exec(); });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   QAction* guide = help->addAction(tr("&User Guide"));

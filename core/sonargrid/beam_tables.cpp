@@ -4,9 +4,10 @@
 #include <cmath>
 #include <map>
 #include <mutex>
-#include <thread>
 #include <utility>
 #include <vector>
+
+#include "sonargrid/concurrency.h"
 
 namespace sg {
 
@@ -35,17 +36,11 @@ BeamTables::BeamTables(double cellSize, int radiusCells, int subdivisions)
   };
   const int count = subdivisions_ * subdivisions_;
   // A 10 m sonar at 5 cm cells is 16 tables of 449² entries, some 60 ms of atan2 on one core:
-  // the tables are filled by every core, each taking every n-th one.
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const int helpers = tableSize_ < 10000 ? 0 : static_cast<int>(std::min(cores, 4u)) - 1;
-  std::vector<std::thread> threads;
-  for (int h = 1; h <= helpers; ++h) {
-    threads.emplace_back([&fill, h, helpers, count] {
-      for (int q = h; q < count; q += helpers + 1) fill(q);
-    });
-  }
-  for (int q = 0; q < count; q += helpers + 1) fill(q);
-  for (std::thread& t : threads) t.join();
+  // the tables are shared out between the policy's threads, each taking every n-th one.
+  const unsigned parts = tableSize_ < 10000 ? 1u : std::min(parallelThreads(), unsigned(count));
+  runParallel(parts, [&](unsigned k) {
+    for (int q = static_cast<int>(k); q < count; q += static_cast<int>(parts)) fill(q);
+  });
 }
 
 int BeamTables::radiusFor(double cellSize, double reach) {

@@ -1,6 +1,18 @@
 // `sonargrid-cli reproduce` on tiny datasets laid out like the bundled ones (docs/cli.md,
 // docs/reproduction.md): every file is written and every summary key is there. The datasets are
-// generated here with the ray-cast simulator, so the test needs nothing from datasets/.
+// generated here with the ray-cast simulator, so those cases need nothing from datasets/.
+//
+// Then the numbers docs/reproduction.md quotes, read out of the page itself and compared with a
+// fresh run on the bundled datasets, so that the page and the program cannot drift apart. The runs
+// are deterministic (the same logs, one grid per experiment, maps bit-identical whatever the
+// thread count), so every number must match to the digits the page prints: the tolerance is the
+// page's own rounding and nothing more. Pinned: paper 000's Table 1 and the per-run figures
+// quoted around it (raschke1990, under a second), paper 001's two tables and the figures quoted
+// from them and from runs.csv (osullivan, a few seconds), paper 002's Fig. 6 table and findings
+// (arafat with a one-set sweep, Fig. 6 does not depend on the sweep). Paper 002's Table 1, the
+// histogram and the lowest bin need the full 1440-set sweep (minutes on two cores), so they are
+// checked only when SONARGRID_REPRODUCE_SWEEP=1 is set; the "Sensitivity check" tables come from
+// other commands on regenerated logs and are not checked here.
 
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -8,7 +20,10 @@
 #include <QProcess>
 #include <QTemporaryDir>
 #include <QtTest>
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <map>
 
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/sim/ray_sonar.h"
@@ -63,6 +78,76 @@ QString two(int run) {
   return QString("%1").arg(run, 2, 10, QChar('0'));
 }
 
+const QString kBundled = QStringLiteral(SONARGRID_DATASETS);
+
+QString readText(const QString& path) {
+  QFile f(path);
+  if (!f.open(QIODevice::ReadOnly)) return {};
+  return QString::fromUtf8(f.readAll());
+}
+
+// docs/reproduction.md, and the same with every run of blanks and line breaks made one space (for
+// sentences the page wraps).
+QString doc() {
+  static const QString text = readText(QStringLiteral(SONARGRID_DOCS "/reproduction.md"));
+  return text;
+}
+QString flatDoc() {
+  static const QString text = doc().simplified();
+  return text;
+}
+
+// The cells of the markdown table row `offset` lines below the first row after `anchor` whose
+// first cell is `first`; empty when there is none.
+QStringList tableRow(const QString& anchor, const QString& first, int offset = 0) {
+  const qsizetype at = doc().indexOf(anchor);
+  if (at < 0) return {};
+  const QStringList lines = doc().mid(at).split('\n');
+  for (qsizetype i = 0; i + offset < lines.size(); ++i) {
+    if (!lines[i].startsWith("| " + first + " |")) continue;
+    QStringList cells = lines[i + offset].split('|');
+    if (cells.size() < 3) return {};
+    cells = cells.mid(1, cells.size() - 2);
+    for (QString& c : cells) c = c.trimmed();
+    return cells;
+  }
+  return {};
+}
+
+// The number as the page prints it.
+QString fixed(double v, int decimals) {
+  return QString::number(v, 'f', decimals);
+}
+
+// A sentence of the page rebuilt from a fresh run must be in the page, word for word.
+#define QVERIFY_IN_DOC(sentence)                                               \
+  do {                                                                         \
+    const QString s_ = (sentence);                                             \
+    QVERIFY2(flatDoc().contains(s_),                                           \
+             qPrintable("docs/reproduction.md does not say: \"" + s_ + "\"")); \
+  } while (false)
+
+double jsonNumber(const QJsonObject& o, const QStringList& path) {
+  QJsonValue v = o;
+  for (const QString& k : path) v = v.toObject()[k];
+  return v.toDouble(std::nan(""));
+}
+
+// Rows of a CSV file with a header line, as maps from column name to text.
+std::vector<std::map<QString, QString>> csvRows(const QString& path) {
+  std::vector<std::map<QString, QString>> rows;
+  const QStringList lines = readText(path).split('\n', Qt::SkipEmptyParts);
+  if (lines.isEmpty()) return rows;
+  const QStringList header = lines[0].split(',');
+  for (qsizetype i = 1; i < lines.size(); ++i) {
+    const QStringList cells = lines[i].split(',');
+    std::map<QString, QString> row;
+    for (qsizetype k = 0; k < header.size() && k < cells.size(); ++k) row[header[k]] = cells[k];
+    rows.push_back(row);
+  }
+  return rows;
+}
+
 }  // namespace
 
 class TestReproduce : public QObject {
@@ -75,10 +160,15 @@ class TestReproduce : public QObject {
     int status = -1;
     QByteArray out, err;
   };
-  Result run(const QStringList& args) {
+  // Status -1 when the command crashed or did not finish within `timeoutMs`.
+  Result run(const QStringList& args, int timeoutMs = 240000) {
     QProcess p;
     p.start(SONARGRID_CLI, args);
-    p.waitForFinished(240000);
+    if (!p.waitForFinished(timeoutMs)) {
+      p.kill();
+      p.waitForFinished();
+      return {-1, {}, "timed out or failed to start: " + p.errorString().toUtf8()};
+    }
     return {p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1, p.readAllStandardOutput(),
             p.readAllStandardError()};
   }
@@ -185,6 +275,275 @@ class TestReproduce : public QObject {
     QFile sweep(file("arafat/sweep.csv"));
     QVERIFY(sweep.open(QIODevice::ReadOnly));
     QCOMPARE(sweep.readAll().count('\n'), 21);
+  }
+
+  // ---- The numbers docs/reproduction.md quotes, from fresh runs on the bundled datasets.
+
+  void bundledRaschke1990AsDocumented() {
+    QTemporaryDir out;
+    const Result r =
+        run({"reproduce", "raschke1990", "--out", out.path(), "--datasets", kBundled, "--json"});
+    QVERIFY2(r.status == 0, r.err.constData());
+    const QJsonObject j = QJsonDocument::fromJson(r.out).object()["raschke1990"].toObject();
+    auto mean = [&](const char* env, const char* m) {
+      return jsonNumber(j, {env, m, "iop_mean_mm"});
+    };
+    auto sd = [&](const char* env, const char* m) { return jsonNumber(j, {env, m, "iop_sd_mm"}); };
+
+    // Table 1: paper multiple, ours multiple, paper single, ours single; "mean / s" in mm, the
+    // page rounds ours to 1 decimal.
+    std::vector<double> ratios;
+    for (const auto& [m, name] : {std::pair{"himm", "HIMM"}, std::pair{"hpf", "HPF"}}) {
+      const QStringList row = tableRow("**Table 1**", name);
+      QCOMPARE(row.size(), 5);
+      QCOMPARE(row[2], fixed(mean("multi", m), 1) + " / " + fixed(sd("multi", m), 1));
+      QCOMPARE(row[4], fixed(mean("single", m), 1) + " / " + fixed(sd("single", m), 1));
+      ratios.push_back(mean("multi", m) / row[1].split(" / ")[0].toDouble());
+      ratios.push_back(mean("single", m) / row[3].split(" / ")[0].toDouble());
+    }
+
+    // The findings quote the per-run values of table1-runs.csv.
+    std::map<QString, std::map<int, std::pair<double, int>>>
+        runs;  // env/method -> run -> iop, cells
+    int hpfReadings = 0;
+    for (const auto& row : csvRows(out.filePath("raschke1990/table1-runs.csv"))) {
+      runs[row.at("environment") + "/" + row.at("method")][row.at("run").toInt()] = {
+          row.at("iop_mm").toDouble(), row.at("filled_cells").toInt()};
+      if (row.at("method") == "hpf") hpfReadings = row.at("readings").toInt();
+    }
+    QCOMPARE(runs.size(), std::size_t{4});
+    auto iop = [&](const char* key, int run) { return runs[key].at(run).first; };
+    auto cells = [&](const char* key, int run) { return runs[key].at(run).second; };
+    auto span = [&](const char* key, const std::vector<int>& which, int decimals) {
+      std::vector<double> v;
+      for (const int k : which) v.push_back(iop(key, k));
+      return fixed(*std::min_element(v.begin(), v.end()), decimals) + QString::fromUtf8("–") +
+             fixed(*std::max_element(v.begin(), v.end()), decimals);
+    };
+    const std::vector<int> all{1, 2, 3, 4, 5, 6, 7, 8, 9, 10};
+    const double himmMultiBest = [&] {
+      double b = 1e300;
+      for (const int k : all) b = std::min(b, iop("multi/himm", k));
+      return b;
+    }();
+    std::vector<int> hpfBetter;
+    for (const int k : all) {
+      if (iop("multi/hpf", k) < himmMultiBest) hpfBetter.push_back(k);
+    }
+    const char* words[] = {"none", "one",   "two",   "three", "four", "five",
+                           "six",  "seven", "eight", "nine",  "ten"};
+    QVERIFY_IN_DOC(QString::fromUtf8("direction (%1 < %2 mm, %3 < %4 mm)")
+                       .arg(fixed(mean("multi", "himm"), 1), fixed(mean("multi", "hpf"), 1),
+                            fixed(mean("single", "himm"), 1), fixed(mean("single", "hpf"), 1)));
+    QVERIFY_IN_DOC(
+        QString("every HIMM run (%1 mm) is below every HPF run (%2 mm, `table1-runs.csv`)")
+            .arg(span("single/himm", all, 0), span("single/hpf", all, 0)));
+    QVERIFY_IN_DOC(
+        QString("%1 of the ten HPF runs (%2 mm) score *better* than every HIMM run (%3 mm)")
+            .arg(words[hpfBetter.size()], span("multi/hpf", hpfBetter, 0),
+                 span("multi/himm", all, 0)));
+    QVERIFY_IN_DOC(QString("only because of runs 02, 07 and 08 (%1, %2, %3 mm)")
+                       .arg(fixed(iop("multi/hpf", 2), 1), fixed(iop("multi/hpf", 7), 1),
+                            fixed(iop("multi/hpf", 8), 1)));
+    QVERIFY_IN_DOC(QString::fromUtf8("All four of our means are %1–%2 times the paper's")
+                       .arg(fixed(*std::min_element(ratios.begin(), ratios.end()), 1),
+                            fixed(*std::max_element(ratios.begin(), ratios.end()), 1)));
+    QVERIFY_IN_DOC(
+        QString("HPF's means are close (%1 vs %2 mm) but its spread is huge (s %3 and %4 mm)")
+            .arg(fixed(mean("multi", "hpf"), 1), fixed(mean("single", "hpf"), 1),
+                 fixed(sd("multi", "hpf"), 1), fixed(sd("single", "hpf"), 1)));
+    QVERIFY_IN_DOC(
+        QString("HIMM's disagrees: %1 mm with multiple obstacles against %2 mm with one box")
+            .arg(fixed(mean("multi", "himm"), 1), fixed(mean("single", "himm"), 1)));
+    QVERIFY(std::max(sd("multi", "himm"), sd("single", "himm")) < 19.0);  // "s under 19 mm"
+    QVERIFY_IN_DOC(QString("Each HPF run has only %1 readings").arg(hpfReadings));
+    std::vector<int> quiet{1, 3, 4, 5, 6, 9};
+    std::vector<int> quietCells;
+    for (const int k : quiet) quietCells.push_back(cells("multi/hpf", k));
+    QVERIFY_IN_DOC(QString::fromUtf8("Run 02 of `raschke-multi` (%1 mm, %2 filled cells against "
+                                     "%3–%4 for runs 01, 03–06, 09)")
+                       .arg(fixed(iop("multi/hpf", 2), 1))
+                       .arg(cells("multi/hpf", 2))
+                       .arg(*std::min_element(quietCells.begin(), quietCells.end()))
+                       .arg(*std::max_element(quietCells.begin(), quietCells.end())));
+    QVERIFY_IN_DOC(QString("run 07 (%1 mm)").arg(fixed(iop("multi/hpf", 7), 1)));
+    QVERIFY_IN_DOC(QString("run 08 (%1 mm)").arg(fixed(iop("multi/hpf", 8), 1)));
+    QVERIFY_IN_DOC(QString("runs 01, 03 (%1, %2 mm)")
+                       .arg(fixed(iop("multi/hpf", 1), 1), fixed(iop("multi/hpf", 3), 1)));
+  }
+
+  void bundledOsullivanAsDocumented() {
+    QTemporaryDir out;
+    const Result r =
+        run({"reproduce", "osullivan", "--out", out.path(), "--datasets", kBundled, "--json"});
+    QVERIFY2(r.status == 0, r.err.constData());
+    const QJsonObject j = QJsonDocument::fromJson(r.out).object()["osullivan"].toObject();
+    const QStringList keys{"correlation_pct", "map_score_pct", "map_score_occupied_pct",
+                           "path_false_positive_pct"};
+    auto pct = [&](const char* table, const char* variant, const QString& key) {
+      return fixed(jsonNumber(j, {table, variant, key}), 2);
+    };
+    // The "ours" row under each model's and rule's "paper" row; the page prints 2 decimals.
+    const struct {
+      const char* anchor;
+      const char* name;
+      const char* table;
+      const char* variant;
+    } rows[] = {{"**Sonar models**", "2-D Gaussian", "models", "2dg"},
+                {"**Sonar models**", "Multiple target", "models", "mtm"},
+                {"**Update methods**", "Simple", "rules", "simple"},
+                {"**Update methods**", "Bayesian", "rules", "bayes"},
+                {"**Update methods**", "Log", "rules", "log"}};
+    double lowCorrelation = 1e300, highCorrelation = -1e300;
+    double lowOccupied = 1e300, highOccupied = -1e300;
+    for (const auto& row : rows) {
+      const QStringList ours = tableRow(row.anchor, row.name, 1);
+      QCOMPARE(ours.size(), 6);
+      QCOMPARE(ours[1], QString("ours"));
+      for (int k = 0; k < 4; ++k)
+        QCOMPARE(ours[2 + k], pct(row.table, row.variant, keys[k]) + " %");
+      const double c = jsonNumber(j, {row.table, row.variant, "correlation_pct"});
+      const double o = jsonNumber(j, {row.table, row.variant, "map_score_occupied_pct"});
+      lowCorrelation = std::min(lowCorrelation, c);
+      highCorrelation = std::max(highCorrelation, c);
+      lowOccupied = std::min(lowOccupied, o);
+      highOccupied = std::max(highOccupied, o);
+    }
+    // The findings and the explanation quote the same numbers, and differences of them.
+    const double c2 = jsonNumber(j, {"models", "2dg", "correlation_pct"});
+    const double cm = jsonNumber(j, {"models", "mtm", "correlation_pct"});
+    const double f2 = jsonNumber(j, {"models", "2dg", "path_false_positive_pct"});
+    const double fm = jsonNumber(j, {"models", "mtm", "path_false_positive_pct"});
+    QVERIFY_IN_DOC(
+        QString("(%1 vs %2 %, +%3 points)").arg(fixed(cm, 2), fixed(c2, 2), fixed(cm - c2, 2)));
+    QVERIFY_IN_DOC(
+        QString("(%1 vs %2 %, %3 points fewer").arg(fixed(fm, 2), fixed(f2, 2), fixed(f2 - fm, 2)));
+    QVERIFY_IN_DOC(QString("loses on Map Score (%1 vs %2 %) and Map Score occupied (%3 vs %4 %)")
+                       .arg(pct("models", "mtm", "map_score_pct"),
+                            pct("models", "2dg", "map_score_pct"),
+                            pct("models", "mtm", "map_score_occupied_pct"),
+                            pct("models", "2dg", "map_score_occupied_pct")));
+    QVERIFY_IN_DOC(QString("Correlation %1 vs %2 %, Map Score %3 vs %4 %, occupied %5 vs %6 %, "
+                           "Path false positives %7 vs %8 %")
+                       .arg(pct("rules", "simple", keys[0]), pct("rules", "bayes", keys[0]),
+                            pct("rules", "simple", keys[1]), pct("rules", "bayes", keys[1]),
+                            pct("rules", "simple", keys[2]), pct("rules", "bayes", keys[2]),
+                            pct("rules", "simple", keys[3]), pct("rules", "bayes", keys[3])));
+    QVERIFY_IN_DOC(QString("about even on Correlation (%1 vs %2 %) and Map Score (%3 vs %4 %), "
+                           "better on Map Score occupied (%5 vs %6 %), worse on Path false "
+                           "positives (%7 vs %8 %)")
+                       .arg(pct("rules", "log", keys[0]), pct("rules", "bayes", keys[0]),
+                            pct("rules", "log", keys[1]), pct("rules", "bayes", keys[1]),
+                            pct("rules", "log", keys[2]), pct("rules", "bayes", keys[2]),
+                            pct("rules", "log", keys[3]), pct("rules", "bayes", keys[3])));
+    QVERIFY_IN_DOC(QString::fromUtf8("(%1–%2 % against 53–63 %; %3–%4 % against")
+                       .arg(fixed(lowCorrelation, 2), fixed(highCorrelation, 2),
+                            fixed(lowOccupied, 2), fixed(highOccupied, 2)));
+    std::map<int, double> logPath;  // the multiple-target model with the log rule, per run
+    for (const auto& row : csvRows(out.filePath("osullivan/runs.csv"))) {
+      if (row.at("variant") == "mtm")
+        logPath[row.at("run").toInt()] = row.at("path_false_positive_pct").toDouble();
+    }
+    QCOMPARE(logPath.size(), std::size_t{2});
+    QVERIFY_IN_DOC(QString("Log gives %1 % on `run-1` and %2 % on `run-2` (`runs.csv`)")
+                       .arg(fixed(logPath[1], 2), fixed(logPath[2], 2)));
+  }
+
+  // Fig. 6 is mapped before the sweep and does not depend on it: one set keeps the run short.
+  void bundledArafatFig6AsDocumented() {
+    QTemporaryDir out;
+    const Result r = run({"reproduce", "arafat", "--out", out.path(), "--datasets", kBundled,
+                          "--json", "--sets", "1"});
+    QVERIFY2(r.status == 0, r.err.constData());
+    const QJsonObject j =
+        QJsonDocument::fromJson(r.out).object()["arafat"].toObject()["fig6"].toObject();
+    // The page's digits: VSDNS 6 decimals, derivative noise 2, counts, IOP 1, percentages 2.
+    auto row = [&](const char* key) {
+      const QJsonObject m = j[key].toObject();
+      return QStringList{fixed(m["vsdns"].toDouble(), 6),
+                         fixed(m["derivative_noise"].toDouble(), 2),
+                         QString("%1 / %2")
+                             .arg(m["two_run_positive"].toInteger())
+                             .arg(m["two_run_negative"].toInteger()),
+                         fixed(m["iop_mm"].toDouble(), 1) + " mm",
+                         fixed(m["correlation_pct"].toDouble(), 2) + " %",
+                         fixed(m["map_score_pct"].toDouble(), 2) + " %",
+                         fixed(m["map_score_occupied_pct"].toDouble(), 2) + " %",
+                         fixed(m["path_false_positive_pct"].toDouble(), 2) + " %"};
+    };
+    const QStringList standard = row("standard");
+    const QStringList parameterized = row("parameterized");
+    QCOMPARE(tableRow("**Fig. 6**", "Standard (Murphy), ours").mid(1), standard);
+    QCOMPARE(tableRow("**Fig. 6**", "Parameterized, ours").mid(1), parameterized);
+    QVERIFY_IN_DOC(QString("(VSDNS %1 vs %2, derivative noise %3 vs %4)")
+                       .arg(parameterized[0], standard[0], parameterized[1], standard[1]));
+    QVERIFY_IN_DOC(QString("(IOP %1 vs %2, Correlation %3 vs %4, Map Score %5 vs %6, Path false "
+                           "positives %7 vs %8)")
+                       .arg(standard[3].chopped(3), parameterized[3], standard[4].chopped(2),
+                            parameterized[4], standard[5].chopped(2), parameterized[5],
+                            standard[7].chopped(2), parameterized[7]));
+  }
+
+  // The full sweep (1440 sets, two maps each): minutes on two cores, so only on request, and
+  // longer than ctest's and Qt Test's limits for this suite: run build/tests/cli/tst_reproduce
+  // with the argument bundledArafatSweepAsDocumented and, in the environment,
+  // SONARGRID_REPRODUCE_SWEEP=1 and QTEST_FUNCTION_TIMEOUT=3600000.
+  void bundledArafatSweepAsDocumented() {
+    if (qEnvironmentVariable("SONARGRID_REPRODUCE_SWEEP") != "1")
+      QSKIP("the 1440-set sweep takes minutes; set SONARGRID_REPRODUCE_SWEEP=1 to check it");
+    QTemporaryDir out;
+    const Result r = run(
+        {"reproduce", "arafat", "--out", out.path(), "--datasets", kBundled, "--json"}, 3600000);
+    QVERIFY2(r.status == 0, r.err.constData());
+    const QJsonObject j = QJsonDocument::fromJson(r.out).object()["arafat"].toObject();
+    QCOMPARE(j["sweep_sets"].toInt(), 1440);
+    // Table 1's "ours" columns: P1, P2 and 2·P3 to 3 decimals, P4 to 3, P5 to 2.
+    const char* columns[] = {"optimal_histogram", "optimal_min", "optimal_mean",
+                             "optimal_derivative_noise", "optimal_two_run"};
+    const struct {
+      const char* row;
+      const char* key;
+      int decimals;
+    } params[] = {
+        {"P1", "p1", 3}, {"P2", "p2", 3}, {"2·P3", "two_p3", 3}, {"P4", "p4", 3}, {"P5", "p5", 2}};
+    for (const auto& p : params) {
+      const QStringList row =
+          tableRow("**Table 1 and the other two approaches**", QString::fromUtf8(p.row));
+      QCOMPARE(row.size(), 11);
+      for (int c = 0; c < 5; ++c) {
+        QCOMPARE(QString(row[2 + 2 * c]).remove(QString::fromUtf8(" ¹")),
+                 fixed(j[columns[c]].toObject()[p.key].toDouble(), p.decimals));
+      }
+    }
+    // What the page says of the optima and of the histogram (Fig. 7).
+    auto criterion = [&](const char* c) { return j[c].toObject()["criterion"].toDouble(); };
+    const QJsonArray edges = j["histogram"].toObject()["edges"].toArray();
+    const QJsonArray counts = j["histogram"].toObject()["counts"].toArray();
+    QCOMPARE(counts.size(), 14);
+    QVERIFY_IN_DOC(QString("the lowest bin averages its %1 sets; the minimum is VSDNS %2")
+                       .arg(j["optimal_histogram"].toObject()["sets"].toInt())
+                       .arg(fixed(criterion("optimal_min"), 6)));
+    QVERIFY_IN_DOC(QString("the derivative-noise optimum has D_map %1; the two-run optimum has "
+                           "agree − differ = %2")
+                       .arg(fixed(criterion("optimal_derivative_noise"), 2))
+                       .arg(criterion("optimal_two_run"), 0, 'f', 0));
+    QVERIFY_IN_DOC(QString::fromUtf8("the lowest bin spans VSDNS %1–%2 and holds %3 sets")
+                       .arg(fixed(edges[0].toDouble(), 6), fixed(edges[1].toDouble(), 6))
+                       .arg(counts[0].toInt()));
+    int bulkLow = 1 << 30, bulkHigh = 0;
+    for (int b = 4; b <= 9; ++b) {
+      bulkLow = std::min(bulkLow, counts[b].toInt());
+      bulkHigh = std::max(bulkHigh, counts[b].toInt());
+    }
+    QVERIFY_IN_DOC(
+        QString::fromUtf8("the bulk (bins 5–10, %1–%2 sets each)").arg(bulkLow).arg(bulkHigh));
+    QVERIFY_IN_DOC(QString::fromUtf8("(bins 1–3: %1, %2 and %3 sets, against %4 in bin 4) and the "
+                                     "top bin holds only %5")
+                       .arg(counts[0].toInt())
+                       .arg(counts[1].toInt())
+                       .arg(counts[2].toInt())
+                       .arg(counts[3].toInt())
+                       .arg(counts[13].toInt()));
   }
 
   void errors_data() {

@@ -1,5 +1,6 @@
 // CARMEN logs: the hand-written fixture (ODOM, TRUEPOS, SONAR with the ring on the line, skipped
-// message types, a SONAR line with extra fields) and the writer's round trip.
+// message types, a SONAR line with extra fields), a log written with the logger's own format
+// strings (writer_fixtures.h), numbers that are not finite, and the writer's round trip.
 
 #include <QtTest>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include "log_fixtures.h"
 #include "sonargrid/io/carmen.h"
 #include "sonargrid/io/log_reader.h"
+#include "writer_fixtures.h"
 
 namespace {
 
@@ -29,6 +31,9 @@ class TstCarmen : public QObject {
   void ignoredMessagesAreCounted();
   void truthComesFromTheLatestTruepos();
   void odometryFromTrueposWhenNoOdom();
+  void loggerFixture();
+  void numbersThatAreNotFinite_data();
+  void numbersThatAreNotFinite();
   void roundTrip();
   void writerFillsMissingSonarsAndSplitsRepeats();
   void writerRejects();
@@ -93,6 +98,62 @@ void TstCarmen::odometryFromTrueposWhenNoOdom() {
   QCOMPARE(d.scans[0].odometry, sg::Pose2D(1.1, 2.1, 0.4));
   QCOMPARE(*d.scans[0].truth, sg::Pose2D(1.0, 2.0, 0.5));
   QCOMPARE(d.scans[0].readings[0].range, 2.5);
+}
+
+// CARMEN 0.7's logger: ODOM and TRUEPOS "%f", SONAR "%f %d", ranges "%.2lf", offsets
+// "%.3f %.3f %f", "%lf %s %lf" at the end; PARAM and SYNC lines around them.
+void TstCarmen::loggerFixture() {
+  sg::LoadReport report;
+  const sg::Dataset d = sg::readLog(logtest::fixture("logger_07.clf"), {}, &report);
+  QCOMPARE(report.format, sg::LogFormat::Carmen);  // "# CARMEN Logfile"
+  // Every value of the table, negative, zero and positive, as the logger printed it: e.g. ODOM
+  // -2.125000 3.000000 2.356000, TRUEPOS -2.100000 2.950000 2.400000, SONAR 0.436300 and ranges
+  // 3.33 0.25 1.00 5.00 (5.00 is the default maximum range: no echo).
+  QVERIFY(d == writer_fixtures::dataset());
+  using Count = std::pair<std::string, std::size_t>;
+  const std::vector<Count> ignored{{"PARAM", 1}, {"SYNC", 1}};
+  QCOMPARE(report.ignoredMessages, ignored);
+}
+
+void TstCarmen::numbersThatAreNotFinite_data() {
+  QTest::addColumn<QByteArray>("text");
+  QTest::addColumn<QByteArray>("message");
+  // What "%f" and "%lf" print for an infinite or undefined value.
+  QTest::newRow("ODOM x inf") << QByteArray("ODOM inf 0 0 0 0 0 1 h 1\n")
+                              << QByteArray(
+                                     "t.clf:1: ODOM x: expected a number of metres, found 'inf', "
+                                     "which is not finite");
+  QTest::newRow("TRUEPOS odom_theta -nan")
+      << QByteArray("TRUEPOS 0 0 0 0 0 -nan 1 h 1\n")
+      << QByteArray(
+             "t.clf:1: TRUEPOS odom_theta: expected an angle in radians, found '-nan', which is "
+             "not finite");
+  QTest::newRow("SONAR range nan")
+      << QByteArray("ODOM 0 0 0 0 0 0 1 h 1\nSONAR 0.436300 1 nan 0 0 0 2 h 2\n")
+      << QByteArray(
+             "t.clf:2: SONAR r[0]: expected a range in metres >= 0, found 'nan', which is not "
+             "finite");
+  QTest::newRow("SONAR timestamp -inf")
+      << QByteArray("ODOM 0 0 0 0 0 0 1 h 1\nSONAR 0.436300 1 1.00 0 0 0 -inf h 2\n")
+      << QByteArray(
+             "t.clf:2: SONAR ipc_timestamp: expected a time in seconds, found '-inf', which is "
+             "not finite");
+  QTest::newRow("SONAR cone out of range")
+      << QByteArray("ODOM 0 0 0 0 0 0 1 h 1\nSONAR 1e400 1 1.00 0 0 0 2 h 2\n")
+      << QByteArray(
+             "t.clf:2: SONAR cone_angle: expected a full cone angle in radians > 0 and <= pi, "
+             "found '1e400', which is out of the range of a double");
+}
+
+void TstCarmen::numbersThatAreNotFinite() {
+  QFETCH(QByteArray, text);
+  QFETCH(QByteArray, message);
+  try {
+    parseCarmen(text.toStdString());
+    QFAIL("no error");
+  } catch (const sg::LogError& e) {
+    QCOMPARE(QByteArray(e.what()), message);
+  }
 }
 
 void TstCarmen::roundTrip() {

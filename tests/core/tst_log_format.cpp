@@ -3,6 +3,10 @@
 
 #include <QtTest>
 #include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -12,6 +16,8 @@
 #include "sonargrid/io/csv_log.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/io/text_lines.h"
+#include "sonargrid/mapper.h"
+#include "writer_fixtures.h"
 
 Q_DECLARE_METATYPE(sg::LogFormat)
 
@@ -25,6 +31,11 @@ std::string readFile(const std::string& path) {
   if (!f.open(QIODevice::ReadOnly)) return {};
   const QByteArray b = f.readAll();
   return std::string(b.constData(), static_cast<std::size_t>(b.size()));
+}
+
+template <class T>
+QByteArray bytesOf(const std::vector<T>& v) {
+  return QByteArray(reinterpret_cast<const char*>(v.data()), qsizetype(v.size() * sizeof(T)));
 }
 
 // A CARMEN log of `scans` SONAR lines of 16 sonars.
@@ -61,6 +72,13 @@ class TstLogFormat : public QObject {
   void lineReaderGrowsPastASizeHint();
   void garbageNeverCrashes_data();
   void garbageNeverCrashes();
+  void printfNumbers_data();
+  void printfNumbers();
+  void refusedNumbers_data();
+  void refusedNumbers();
+  void writerFixturesAreCommitted_data();
+  void writerFixturesAreCommitted();
+  void everyLoggerGivesTheSameReadings();
 };
 
 void TstLogFormat::detect_data() {
@@ -320,6 +338,9 @@ void TstLogFormat::garbageNeverCrashes_data() {
   QTest::newRow("player 2") << "small_p2.playerlog" << sg::LogFormat::Player;
   QTest::newRow("player 1") << "small_p1.playerlog" << sg::LogFormat::Player;
   QTest::newRow("csv") << "mm_ddeg.csv" << sg::LogFormat::Csv;
+  QTest::newRow("player 3 writelog") << "writelog_p3_sonar.playerlog" << sg::LogFormat::Player;
+  QTest::newRow("player 3 ranger") << "writelog_p3_ranger.playerlog" << sg::LogFormat::Player;
+  QTest::newRow("carmen 0.7 logger") << "logger_07.clf" << sg::LogFormat::Carmen;
 }
 
 // Byte flips, cuts and repeats of a good fixture, strict and lenient, auto and forced: the only
@@ -330,7 +351,7 @@ void TstLogFormat::garbageNeverCrashes() {
   const std::string good = readFile(logtest::fixture(fixture.toStdString()));
   QVERIFY(!good.empty());
   std::mt19937 rng(12345);
-  const char alphabet[] = "0123456789 .-e\n#,xSONARODM\t\r\x80\xff";
+  const char alphabet[] = "0123456789 .-+e\n#,xSONARODMinf\t\r\x80\xff";
   for (int round = 0; round < 600; ++round) {
     std::string text = good;
     const int edits = 1 + round % 4;
@@ -363,6 +384,144 @@ void TstLogFormat::garbageNeverCrashes() {
     } catch (const sg::LogError&) {
     }
   }
+}
+
+// Every number the loggers' formats print (writer_fixtures.h: Player's "%+07.3f" family, CARMEN's
+// "%f", "%lf", "%.2lf") and printf's other float conversions, for values of every sign and size:
+// a finite one reads back as C's strtod reads the same text, an infinite or undefined one is
+// recognised as a number that is not finite.
+void TstLogFormat::printfNumbers_data() {
+  QTest::addColumn<QByteArray>("text");
+  QTest::addColumn<bool>("finite");
+  const writer_fixtures::CLocale c;
+  const char* formats[] = {"%+07.3f", "%+04.3f", "%+07.4f", "%.3f", "%014.3f", "%f", "%lf",
+                           "%.2lf",   "%+.8f",   "%e",      "%E",   "%g",      "%G", "%F"};
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double values[] = {-1234.5678,   -1.5,   -0.0004, -0.0, 0.0,  0.0004, 1.5,
+                           1166644800.1, 1e-300, 1e300,   inf,  -inf, nan,    -nan};
+  for (const char* f : formats) {
+    for (const double v : values) {
+      char buf[400];
+      std::snprintf(buf, sizeof buf, f, v);
+      // printf pads inf and nan with blanks, not zeros ("%+07.3f" gives "   +inf"): in a log line
+      // they separate fields, so the reader's token is the rest.
+      const QByteArray token = QByteArray(buf).trimmed();
+      QTest::addRow("%s %s", f, token.constData()) << token << std::isfinite(v);
+    }
+  }
+}
+
+void TstLogFormat::printfNumbers() {
+  QFETCH(QByteArray, text);
+  QFETCH(bool, finite);
+  double v = 0.0;
+  const sg::text::NumberText got =
+      sg::text::parseNumber(std::string_view(text.constData(), std::size_t(text.size())), v);
+  if (!finite) {
+    QCOMPARE(int(got), int(sg::text::NumberText::kNotFinite));
+    return;
+  }
+  QCOMPARE(int(got), int(sg::text::NumberText::kFinite));
+  const writer_fixtures::CLocale c;
+  QCOMPARE(v, std::strtod(text.constData(), nullptr));
+}
+
+void TstLogFormat::refusedNumbers_data() {
+  QTest::addColumn<QByteArray>("text");
+  QTest::addColumn<int>("kind");
+  const int notANumber = int(sg::text::NumberText::kNotANumber);
+  const int outOfRange = int(sg::text::NumberText::kOutOfRange);
+  // printf never writes these: no digits, two signs, a unit, hexadecimal, blanks, a comma.
+  for (const char* t : {"", "+", "-", ".", "+-1", "-+1", "++1", "--1", "1.5m", "0x10", " 1", "1 ",
+                        "1,5", "e5", "1e", "+ 1", "inf1"}) {
+    QTest::addRow("'%s'", t) << QByteArray(t) << notANumber;
+  }
+  // Numbers, but none a double can hold.
+  for (const char* t : {"1e400", "-1e400", "+1e400", "1e-400"}) {
+    QTest::addRow("'%s'", t) << QByteArray(t) << outOfRange;
+  }
+}
+
+void TstLogFormat::refusedNumbers() {
+  QFETCH(QByteArray, text);
+  QFETCH(int, kind);
+  double v = 42.0;
+  QCOMPARE(
+      int(sg::text::parseNumber(std::string_view(text.constData(), std::size_t(text.size())), v)),
+      kind);
+  QCOMPARE(v, 42.0);  // left as it was
+}
+
+// The fixtures in tests/data/logs/ and the fuzz seeds are what make_writer_fixtures writes from
+// writer_fixtures.h today (regenerate them with `make_writer_fixtures tests` after a change).
+void TstLogFormat::writerFixturesAreCommitted_data() {
+  QTest::addColumn<QString>("path");
+  QTest::addColumn<QByteArray>("text");
+  const QString tests = QStringLiteral(SONARGRID_TEST_DATA "/..");
+  for (const writer_fixtures::File& f : writer_fixtures::files()) {
+    const std::string text = f.make();
+    const QString name = QString::fromStdString(f.name);
+    QTest::addRow("data/logs/%s", f.name.c_str())
+        << tests + "/data/logs/" + name << QByteArray::fromStdString(text);
+    for (const std::string& target : f.corpora) {
+      QTest::addRow("fuzz/corpus/%s/%s", target.c_str(), f.name.c_str())
+          << tests + "/fuzz/corpus/" + QString::fromStdString(target) + "/" + name
+          << QByteArray::fromStdString(text);
+    }
+  }
+}
+
+void TstLogFormat::writerFixturesAreCommitted() {
+  QFETCH(QString, path);
+  QFETCH(QByteArray, text);
+  QCOMPARE(QByteArray::fromStdString(readFile(path.toStdString())), text);
+}
+
+// The same ring, poses and ranges written by Player 3's writelog, CARMEN's logger and SonarGrid's
+// own writer load as the same readings and map to the same bytes.
+void TstLogFormat::everyLoggerGivesTheSameReadings() {
+  const sg::Dataset expected = writer_fixtures::dataset();
+  sg::LoadReport carmenReport;
+  const sg::Dataset carmen = sg::readLog(logtest::fixture("logger_07.clf"), {}, &carmenReport);
+  QCOMPARE(carmenReport.format, sg::LogFormat::Carmen);
+  QVERIFY(carmen == expected);  // ring, poses with truth, ranges; 5.00 and 7.25 are no echo
+  const sg::Dataset sglog = sg::readLog(logtest::fixture("writer.sglog"));
+  QCOMPARE(sglog.ring, expected.ring);
+  QCOMPARE(sglog.scans, expected.scans);
+
+  // Player logs no cone angle: the preset (here the default ring with CARMEN's cone) lends it.
+  sg::LogOptions withCone;
+  withCone.ring = sg::SonarRing{};
+  withCone.ring->apertureRad = writer_fixtures::kConeAngle;
+  sg::LoadReport playerReport;
+  const sg::Dataset player =
+      sg::readLog(logtest::fixture("writelog_p3_sonar.playerlog"), withCone, &playerReport);
+  QCOMPARE(playerReport.format, sg::LogFormat::Player);  // "## Player version 3.0.2"
+  QCOMPARE(player.ring, carmen.ring);
+  QCOMPARE(player.scans.size(), carmen.scans.size());
+  for (std::size_t i = 0; i < player.scans.size(); ++i) {
+    QCOMPARE(player.scans[i].time, carmen.scans[i].time);
+    QCOMPARE(player.scans[i].odometry, carmen.scans[i].odometry);
+    QVERIFY(!player.scans[i].truth.has_value());  // writelog has no true pose
+    QCOMPARE(player.scans[i].readings, carmen.scans[i].readings);
+  }
+
+  sg::MapperSettings settings;  // HPF and addition, the defaults; odometry poses
+  const sg::GridSpec grid = carmen.fittingGrid(sg::PoseSource::Odometry, 0.05);
+  sg::Mapper fromCarmen(carmen.ring, grid, settings);
+  sg::Mapper fromPlayer(player.ring, grid, settings);
+  QVERIFY(fromCarmen.mapDataset(carmen));
+  QVERIFY(fromPlayer.mapDataset(player));
+  QCOMPARE(fromPlayer.readingsIntegrated(), std::size_t{16});
+  const sg::OccupancyMap a = fromCarmen.snapshot();
+  const sg::OccupancyMap b = fromPlayer.snapshot();
+  QVERIFY(a.filledCount() > 0);
+  QCOMPARE(bytesOf(b.probability), bytesOf(a.probability));
+  QCOMPARE(bytesOf(b.native), bytesOf(a.native));
+  QCOMPARE(bytesOf(b.level), bytesOf(a.level));
+  QCOMPARE(bytesOf(b.filled), bytesOf(a.filled));
+  QCOMPARE(bytesOf(b.observed), bytesOf(a.observed));
 }
 
 QTEST_GUILESS_MAIN(TstLogFormat)

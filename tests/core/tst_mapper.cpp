@@ -7,6 +7,7 @@
 #include <set>
 #include <thread>
 
+#include "sonargrid/concurrency.h"
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/mapper.h"
 #include "sonargrid/scan_source.h"
@@ -56,6 +57,13 @@ std::vector<std::pair<std::string, std::string>> allPairs() {
   return out;
 }
 
+// Counts the footprints it is shown.
+struct Counter final : FootprintObserver {
+  std::size_t seen = 0;
+  void reset(std::size_t) override { seen = 0; }
+  void observe(const Footprint&) override { ++seen; }
+};
+
 bool sameLayers(const OccupancyMap& a, const OccupancyMap& b) {
   // Bit-identical: compare the doubles' bytes, not their values within a tolerance.
   return a.spec == b.spec && a.level == b.level && a.filled == b.filled &&
@@ -78,6 +86,7 @@ class TstMapper : public QObject {
   void parallelIsRepeatable();
   void cancelMidRun();
   void cancelStripes();
+  void stripesForEveryRuleKind_data();
   void stripesForEveryRuleKind();
   void untilIsAPrefix();
   void deterministic();
@@ -238,33 +247,61 @@ void TstMapper::cancelStripes() {
   }
 }
 
-void TstMapper::stripesForEveryRuleKind() {
+void TstMapper::stripesForEveryRuleKind_data() {
   // The three ways a large log is mapped on several threads, each bit-identical to one thread
-  // scan by scan: stripes of rows (Bayes), stripes in step sharing each footprint's total
-  // (addition with normalisation, which scales a footprint by its sum), and, for HIMM's axis line
-  // (too cheap to cut into rows) or with an observer, the ordered pipeline.
-  const Dataset& d = room();
-  const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
+  // scan by scan, at any thread count (the policy's, concurrency.h): stripes of rows (Bayes),
+  // stripes in step sharing each footprint's total (addition with normalisation, which scales a
+  // footprint by its sum), and, for HIMM's axis line (too cheap to cut into rows) or with an
+  // observer, the ordered pipeline. 3 threads do not divide the rows evenly; 8 are more than this
+  // machine may have.
+  QTest::addColumn<QString>("model");
+  QTest::addColumn<QString>("rule");
+  QTest::addColumn<double>("normalise");  // < 0: the rule has no such parameter
+  QTest::addColumn<bool>("observer");
+  QTest::addColumn<unsigned>("threads");
   struct Case {
     const char* model;
     const char* rule;
     double normalise;
+    bool observer;
   };
   for (const Case& c :
-       {Case{"parameterized", "bayes", -1}, Case{"hpf", "addition", 1}, Case{"hpf", "addition", 0},
-        Case{"murphy", "addition", 1}, Case{"himm", "himm", -1}}) {
-    MapperSettings s;
-    s.model = c.model;
-    s.rule = c.rule;
-    s.parameters = defaultParameters(s.model, s.rule);
-    if (c.normalise >= 0) s.parameters.set("normalise", c.normalise);
-    Mapper batch(d.ring, grid, s), incremental(d.ring, grid, s);
-    QVERIFY(batch.mapDataset(d));
-    for (const Scan& scan : d.scans) incremental.integrate(scan);
-    const QByteArray what = QByteArray(c.model) + " x " + c.rule;
-    QVERIFY2(sameLayers(batch.snapshot(), incremental.snapshot()), what);
-    QVERIFY2(batch.snapshot().filledCount() > 100, what);
+       {Case{"parameterized", "bayes", -1, false}, Case{"hpf", "addition", 1, false},
+        Case{"hpf", "addition", 0, false}, Case{"murphy", "addition", 1, false},
+        Case{"himm", "himm", -1, false}, Case{"konolige", "logodds", -1, true}}) {
+    for (unsigned threads : {1u, 2u, 3u, 8u}) {
+      QTest::addRow("%s x %s%s%s, threads %u", c.model, c.rule,
+                    c.normalise == 0 ? " (not normalised)" : "", c.observer ? ", observed" : "",
+                    threads)
+          << c.model << c.rule << c.normalise << c.observer << threads;
+    }
   }
+}
+
+void TstMapper::stripesForEveryRuleKind() {
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  QFETCH(double, normalise);
+  QFETCH(bool, observer);
+  QFETCH(unsigned, threads);
+  const Dataset& d = room();
+  const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
+  MapperSettings s;
+  s.model = model.toStdString();
+  s.rule = rule.toStdString();
+  s.parameters = defaultParameters(s.model, s.rule);
+  if (normalise >= 0) s.parameters.set("normalise", normalise);
+  Mapper incremental(d.ring, grid, s);
+  for (const Scan& scan : d.scans) incremental.integrate(scan);
+  Counter counter;
+  const ScopedThreadCount policy(threads);
+  Mapper batch(d.ring, grid, s);
+  if (observer) batch.setObserver(&counter);
+  QVERIFY(batch.mapDataset(d));
+  QCOMPARE(batch.readingsIntegrated(), d.readingCount());
+  if (observer) QCOMPARE(counter.seen, d.readingCount());  // each footprint once
+  QVERIFY(sameLayers(batch.snapshot(), incremental.snapshot()));
+  QVERIFY(batch.snapshot().filledCount() > 100);
 }
 
 void TstMapper::untilIsAPrefix() {

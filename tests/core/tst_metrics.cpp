@@ -2,7 +2,6 @@
 // the Moravec–Blackwell match, cross-entropy, Brier, ROC AUC, precision / recall / F1 / IoU and the
 // path comparison. Expected values are worked by hand on tiny grids; each row says how.
 
-#include <QElapsedTimer>
 #include <QtTest>
 #include <algorithm>
 #include <array>
@@ -126,7 +125,6 @@ class TstMetrics : public QObject {
   void pathComparisonByHand_data();
   void pathComparisonByHand();
   void pathComparisonReactsToWalls();
-  void pathComparisonIsFastOnALargeGrid();
   void metricListParsing();
   void scoreOfAPerfectMap();
   void scoreRestrictsMetrics();
@@ -580,43 +578,6 @@ void TstMetrics::pathComparisonReactsToWalls() {
   // No pairs asked: nothing drawn, both undefined.
   const sg::PathComparison none = sg::comparePaths(perfect, ideal, 0, 11);
   QVERIFY(!none.falsePositivePct && !none.falseNegativePct);
-}
-
-void TstMetrics::pathComparisonIsFastOnALargeGrid() {
-  // 800 x 600 cells (5 cm: 40 m x 30 m), rooms of random walls, 100 pairs: well under a second
-  // in an optimised build (the timing is printed; the bound here is loose for debug builds).
-  const sg::GridSpec spec = grid(800, 600, 0.05);
-  sg::ReferenceMap ref;
-  ref.objects.push_back(sg::ReferenceObject{
-      "walls", false, {{0.1, 0.1}, {39.9, 0.1}, {39.9, 29.9}, {0.1, 29.9}, {0.1, 0.1}}});
-  sg::SeededRandom random(3);
-  for (int k = 0; k < 60; ++k) {
-    const double x = 1.0 + static_cast<double>(random.below(3800)) / 100.0;
-    const double y = 1.0 + static_cast<double>(random.below(2800)) / 100.0;
-    const double len = 1.0 + static_cast<double>(random.below(800)) / 100.0;
-    const bool vertical = random.below(2) == 0;
-    ref.objects.push_back(sg::ReferenceObject{
-        "w" + std::to_string(k),
-        false,
-        {{x, y},
-         {vertical ? x : std::min(39.0, x + len), vertical ? std::min(29.0, y + len) : y}}});
-  }
-  const sg::ActualPositionGrid apg = sg::ActualPositionGrid::rasterise(ref, spec);
-  const sg::IdealMap ideal = sg::IdealMap::fromReference(ref, apg);
-  sg::OccupancyMap map = blankMap(spec);
-  for (std::size_t i = 0; i < spec.cellCount(); ++i) {
-    map.observed[i] = 1;
-    // The walls, with every 7th wall cell missing and some noise.
-    map.probability[i] = apg.cells[i] && i % 7 != 0 ? 0.9 : (random.below(50) == 0 ? 0.8 : 0.1);
-  }
-  QElapsedTimer timer;
-  timer.start();
-  const sg::PathComparison c = sg::comparePaths(map, ideal, 100, 1990);
-  const qint64 ms = timer.elapsed();
-  qInfo("path comparison on 800 x 600, 100 pairs: %lld ms (FP %.1f %%, FN %.1f %%)", ms,
-        c.falsePositivePct.value_or(-1), c.falseNegativePct.value_or(-1));
-  QCOMPARE(c.pairs, std::size_t{100});
-  QVERIFY2(ms < 5000, qPrintable(QString("%1 ms").arg(ms)));
 }
 
 // ---------------------------------------------------------------------------------------------

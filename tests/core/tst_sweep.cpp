@@ -5,6 +5,7 @@
 #include <set>
 #include <tuple>
 
+#include "sonargrid/concurrency.h"
 #include "sonargrid/mapper.h"
 #include "sonargrid/sim/ray_sonar.h"
 #include "sonargrid/sweep/optimal_sets.h"
@@ -195,16 +196,20 @@ class TestSweep : public QObject {
     const std::vector<ParameterSet> sets{all[0], all[333], all[777], all[1439], all[1000]};
     SweepSettings s;
     s.grid = a.fittingGrid(PoseSource::Odometry, 0.1);
-    s.threads = 1;
     std::size_t calls = 0;
-    const SweepOutcome one = runSweep(a, &b, sets, s, [&](std::size_t done, std::size_t total) {
-      ++calls;
-      QCOMPARE(total, sets.size());
-      QCOMPARE(done, calls);
-    });
+    const SweepOutcome one = [&] {
+      const ScopedThreadCount threads(1);
+      return runSweep(a, &b, sets, s, [&](std::size_t done, std::size_t total) {
+        ++calls;
+        QCOMPARE(total, sets.size());
+        QCOMPARE(done, calls);
+      });
+    }();
     QCOMPARE(calls, sets.size());
-    s.threads = 3;
-    const SweepOutcome three = runSweep(a, &b, sets, s);
+    const SweepOutcome three = [&] {
+      const ScopedThreadCount threads(3);
+      return runSweep(a, &b, sets, s);
+    }();
     QVERIFY(one.completed && three.completed);
     for (std::size_t i = 0; i < sets.size(); ++i) {
       QVERIFY(one.rows[i].vsdns.has_value());

@@ -150,7 +150,7 @@ class CsvParser : Table {
       const std::string field = "sonar " + std::to_string(i) + " (" + column(c) + ")";
       double v = 0.0;
       if (!text::parseFinite(raw, v)) {
-        fail(field, "expected a range >= 0 or a no-echo value, " + found(raw));
+        fail(field, "expected a range >= 0 or a no-echo value, " + text::foundNumber(raw));
       }
       double range = Reading::kNoEcho;
       if (std::find(l.noEcho.begin(), l.noEcho.end(), v) == l.noEcho.end()) {

@@ -1,6 +1,7 @@
 #include "sonargrid/io/player.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 #include <vector>
@@ -17,15 +18,24 @@ using text::found;
 constexpr std::size_t kMaxSonars = 65536;  // Reading::sonar is 16 bits wide
 constexpr std::size_t kHeaderFields = 5;   // time host robot interface index
 
-// Player message types and subtypes (player.h): data 1, request-ack 4.
+// Player message types and subtypes (player.h and the interface definitions of Player 3):
+// data 1, request-ack 4.
 constexpr unsigned long kData = 1;
 constexpr unsigned long kAck = 4;
 constexpr unsigned long kSonarRanges = 1;    // PLAYER_SONAR_DATA_RANGES
 constexpr unsigned long kSonarGeom = 2;      // PLAYER_SONAR_DATA_GEOM
 constexpr unsigned long kSonarReqGeom = 1;   // PLAYER_SONAR_REQ_GET_GEOM
 constexpr unsigned long kRangerRange = 1;    // PLAYER_RANGER_DATA_RANGE
-constexpr unsigned long kRangerPose = 2;     // PLAYER_RANGER_DATA_RANGEPOSE
+constexpr unsigned long kRangerStamped = 2;  // PLAYER_RANGER_DATA_RANGESTAMPED
+constexpr unsigned long kRangerReqGeom = 1;  // PLAYER_RANGER_REQ_GET_GEOM
 constexpr unsigned long kPositionState = 1;  // PLAYER_POSITION2D_DATA_STATE
+// Player 3's writelog writes a ranger geometry as the device pose and size (px py pz proll ppitch
+// pyaw sw sl sh), then a count and x y z roll pitch yaw of each element, then a count and the
+// w l h of each element; a stamped range scan may end with the 7 numbers of the configuration.
+constexpr std::size_t kRangerDeviceFields = 9;
+constexpr std::size_t kRangerElementFields = 6;
+constexpr std::size_t kRangerSizeFields = 3;
+constexpr std::size_t kRangerConfigFields = 7;
 
 class PlayerParser : text::LineParser {
  public:
@@ -77,15 +87,21 @@ class PlayerParser : text::LineParser {
         ranges(time, "sonar", false);
         return;
       }
-      if ((type == kData && subtype == kSonarGeom && !legacy_) ||
-          (type == kAck && subtype == kSonarReqGeom && !legacy_)) {
+      if (((type == kData && subtype == kSonarGeom) ||
+           (type == kAck && subtype == kSonarReqGeom)) &&
+          !legacy_ && sameDevice(rangeDevice_)) {
         geometry("sonar", payload_);
         return;
       }
     } else if (iface == "ranger") {
-      if (type == kData && (subtype == kRangerRange || subtype == kRangerPose) &&
+      if (type == kData && (subtype == kRangerRange || subtype == kRangerStamped) &&
           sameDevice(rangeDevice_)) {
-        ranges(time, "ranger", !legacy_ && subtype == kRangerPose);
+        ranges(time, "ranger", subtype == kRangerStamped);
+        return;
+      }
+      if (type == kAck && subtype == kRangerReqGeom && sameDevice(rangeDevice_)) {
+        const std::size_t end = rangerGeometry(payload_);
+        needFields("ranger", end - payload_, kRangerGeometryLayout, true);
         return;
       }
     }
@@ -176,11 +192,95 @@ class PlayerParser : text::LineParser {
     }
   }
 
-  void ranges(double time, std::string_view iface, bool withPoses) {
+  static constexpr const char* kRangerGeometryLayout =
+      "px py pz proll ppitch pyaw sw sl sh, a count, x y z roll pitch yaw of each element, a "
+      "count, w l h of each element";
+
+  // A ranger geometry starting at fields_[at]; sets the ring and returns the index after it. The
+  // elements are the sonars, their poses in the device's frame: the ring gets device pose composed
+  // with element pose, in the plane (z, roll and pitch are read as numbers and not used).
+  std::size_t rangerGeometry(std::size_t at) {
+    const std::size_t before = at - payload_;
+    needFields("ranger", before + kRangerDeviceFields + 1, kRangerGeometryLayout, false);
+    const double dx = finite(at, "ranger px", "a number of metres");
+    const double dy = finite(at + 1, "ranger py", "a number of metres");
+    finite(at + 2, "ranger pz", "a number of metres");
+    finite(at + 3, "ranger proll", "an angle in radians");
+    finite(at + 4, "ranger ppitch", "an angle in radians");
+    const double dyaw = finite(at + 5, "ranger pyaw", "an angle in radians");
+    finite(at + 6, "ranger sw", "a size in metres");
+    finite(at + 7, "ranger sl", "a size in metres");
+    finite(at + 8, "ranger sh", "a size in metres");
+    at += kRangerDeviceFields;
+    const unsigned long n = elementCount(at, "ranger element count");
+    needFields("ranger", at - payload_ + 1 + n * kRangerElementFields + 1, kRangerGeometryLayout,
+               false);
+    const double c = std::cos(dyaw);
+    const double s = std::sin(dyaw);
+    std::vector<SonarMount> mounts(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t e = at + 1 + kRangerElementFields * i;
+      const std::string index = "[" + std::to_string(i) + "]";
+      const double x = finite(e, "ranger x" + index, "a number of metres");
+      const double y = finite(e + 1, "ranger y" + index, "a number of metres");
+      finite(e + 2, "ranger z" + index, "a number of metres");
+      finite(e + 3, "ranger roll" + index, "an angle in radians");
+      finite(e + 4, "ranger pitch" + index, "an angle in radians");
+      const double yaw = finite(e + 5, "ranger yaw" + index, "an angle in radians");
+      // Not Pose2D::compose: that wraps the heading, and a device at the robot's origin (the usual
+      // case) must give the element poses exactly as logged.
+      mounts[i] = SonarMount{Pose2D(dx + c * x - s * y, dy + s * x + c * y, dyaw + yaw)};
+    }
+    at += 1 + n * kRangerElementFields;
+    const unsigned long m = elementCount(at, "ranger size count");
+    needFields("ranger", at - payload_ + 1 + m * kRangerSizeFields, kRangerGeometryLayout, false);
+    for (std::size_t i = 0; i < m * kRangerSizeFields; ++i) {
+      finite(at + 1 + i, "ranger size[" + std::to_string(i / kRangerSizeFields) + "]",
+             "a size in metres");
+    }
+    setGeometry(std::move(mounts), "ranger");
+    return at + 1 + m * kRangerSizeFields;
+  }
+
+  unsigned long elementCount(std::size_t at, const std::string& field) const {
+    unsigned long n = 0;
+    if (!text::parseUnsigned(fields_[at], n) || n > kMaxSonars) {
+      fail(field, "expected a count 0.." + std::to_string(kMaxSonars) + ", " + found(fields_[at]));
+    }
+    return n;
+  }
+
+  // After the ranges of a stamped ranger scan: have_geom, the geometry when it is not 0, and the
+  // configuration or nothing (Player 3's writelog writes no have_config flag, so the number of
+  // fields left tells).
+  void rangerStampedTail(std::size_t at) {
+    const std::string layout =
+        "count, the ranges, have_geom, the geometry when have_geom is not 0, then nothing or the "
+        "7 configuration numbers";
+    unsigned long haveGeometry = 0;
+    if (!text::parseUnsigned(fields_[at], haveGeometry)) {
+      fail("ranger have_geom", "expected 0 or 1, " + found(fields_[at]));
+    }
+    ++at;
+    if (haveGeometry != 0) at = rangerGeometry(at);
+    const std::size_t left = fields_.size() - at;
+    if (left != 0 && left != kRangerConfigFields) {
+      fail("ranger", "expected " + std::to_string(at - payload_) + " or " +
+                         std::to_string(at - payload_ + kRangerConfigFields) + " payload fields (" +
+                         layout + "), found " + std::to_string(fields_.size() - payload_));
+    }
+    for (std::size_t i = 0; i < left; ++i) {
+      finite(at + i, "ranger config[" + std::to_string(i) + "]", "a number");
+    }
+  }
+
+  void ranges(double time, std::string_view iface, bool stamped) {
     const unsigned long n = count(iface);
-    needFields(iface, 1 + n * (withPoses ? 4 : 1),
-               withPoses ? "count, the ranges, then x y yaw of each sensor" : "count, the ranges",
-               true);
+    if (stamped) {
+      needFields(iface, 2 + n, "count, the ranges, have_geom...", false);
+    } else {
+      needFields(iface, 1 + n, "count, the ranges", true);
+    }
     readings_.clear();
     for (std::size_t i = 0; i < n; ++i) {
       const std::string field = std::string(iface) + " r[" + std::to_string(i) + "]";
@@ -189,7 +289,7 @@ class PlayerParser : text::LineParser {
         fail(field, "expected a range in metres >= 0, " + found(fields_[payload_ + 1 + i]));
       readings_.push_back(Reading{static_cast<std::uint16_t>(i), r, time});
     }
-    if (withPoses) setGeometry(poses(iface, payload_ + 1 + n, n), iface);
+    if (stamped) rangerStampedTail(payload_ + 1 + n);
     if (time < lastTime_) {
       fail("time", "expected a time >= " + text::number(lastTime_) +
                        " (the previous scan's; scans are in time order), " + found(fields_[0]));

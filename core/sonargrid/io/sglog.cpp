@@ -29,6 +29,7 @@ namespace {
 
 using text::firstBadByte;
 using text::found;
+using text::foundNumber;
 using text::hexDigit;
 using text::isControl;
 using text::number;
@@ -121,7 +122,7 @@ class Parser : text::LineParser {
   double finite(std::size_t i, std::string_view field, std::string_view expected) const {
     double v = 0.0;
     if (!parseFinite(fields_[i], v))
-      fail(field, "expected " + std::string(expected) + ", " + found(fields_[i]));
+      fail(field, "expected " + std::string(expected) + ", " + foundNumber(fields_[i]));
     return v;
   }
 
@@ -203,7 +204,8 @@ class Parser : text::LineParser {
           expectCount(1, "full cone angle in radians");
           if (!parseFinite(fields_[1], ds_.ring.apertureRad) ||
               !validAperture(ds_.ring.apertureRad)) {
-            fail("aperture", "expected an angle in radians > 0 and <= pi, " + found(fields_[1]));
+            fail("aperture",
+                 "expected an angle in radians > 0 and <= pi, " + foundNumber(fields_[1]));
           }
           break;
         case kMinRange:
@@ -292,10 +294,10 @@ class Parser : text::LineParser {
       const std::string expected =
           "a number of metres >= 0 and < max_range " + number(ds_.ring.maxRange);
       if (!parseFinite(fields_[1], v) || v < 0.0 || v >= ds_.ring.maxRange) {
-        fail("min_range", "expected " + expected + ", " + found(fields_[1]));
+        fail("min_range", "expected " + expected + ", " + foundNumber(fields_[1]));
       }
     } else if (!parseFinite(fields_[1], v) || v < 0.0) {
-      fail("min_range", "expected a number of metres >= 0, " + found(fields_[1]));
+      fail("min_range", "expected a number of metres >= 0, " + foundNumber(fields_[1]));
     }
     ds_.ring.minRange = v;
   }
@@ -307,10 +309,10 @@ class Parser : text::LineParser {
     if (haveMin) {
       const std::string expected = "a number of metres > min_range " + number(ds_.ring.minRange);
       if (!parseFinite(fields_[1], v) || v <= ds_.ring.minRange) {
-        fail("max_range", "expected " + expected + ", " + found(fields_[1]));
+        fail("max_range", "expected " + expected + ", " + foundNumber(fields_[1]));
       }
     } else if (!parseFinite(fields_[1], v) || v <= 0.0) {
-      fail("max_range", "expected a number of metres > 0, " + found(fields_[1]));
+      fail("max_range", "expected a number of metres > 0, " + foundNumber(fields_[1]));
     }
     ds_.ring.maxRange = v;
   }
@@ -409,7 +411,7 @@ class Parser : text::LineParser {
       r.range = Reading::kNoEcho;
     } else {
       if (!parseFinite(fields_[2], r.range) || r.range < 0.0) {
-        fail("range", "expected a number of metres >= 0 or 'none', " + found(fields_[2]));
+        fail("range", "expected a number of metres >= 0 or 'none', " + foundNumber(fields_[2]));
       }
       // The header says the transducer hears nothing at or beyond max_range.
       if (r.range >= ds_.ring.maxRange) r.range = Reading::kNoEcho;

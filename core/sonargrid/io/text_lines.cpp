@@ -241,10 +241,26 @@ void splitDelimited(std::string_view line, char delimiter, std::vector<std::stri
   }
 }
 
-bool parseFinite(std::string_view t, double& v) {
+NumberText parseNumber(std::string_view t, double& v) {
+  // from_chars reads everything printf writes for %f, %e and %g (leading zeros, exponents, inf and
+  // nan in any case, "-nan") except the '+' that the '+' flag puts in front; that sign is taken
+  // off here, and only when a digit, '.', 'i' or 'n' follows ("+-1" and a lone "+" stay refused).
+  if (!t.empty() && t.front() == '+') {
+    t.remove_prefix(1);
+    if (t.empty() || t.front() == '-' || t.front() == '+') return NumberText::kNotANumber;
+  }
   const char* end = t.data() + t.size();
-  const auto [ptr, ec] = std::from_chars(t.data(), end, v);
-  return ec == std::errc() && ptr == end && std::isfinite(v);
+  double parsed = 0.0;
+  const auto [ptr, ec] = std::from_chars(t.data(), end, parsed);
+  if (ptr != end) return NumberText::kNotANumber;
+  if (ec == std::errc::result_out_of_range) return NumberText::kOutOfRange;
+  if (ec != std::errc()) return NumberText::kNotANumber;
+  v = parsed;
+  return std::isfinite(parsed) ? NumberText::kFinite : NumberText::kNotFinite;
+}
+
+bool parseFinite(std::string_view t, double& v) {
+  return parseNumber(t, v) == NumberText::kFinite;
 }
 
 bool parseUnsigned(std::string_view t, unsigned long& v) {
@@ -271,6 +287,20 @@ std::string found(std::string_view token) {
   return "found '" + shown(token) + "'";
 }
 
+std::string foundNumber(std::string_view token) {
+  double v = 0.0;
+  switch (parseNumber(token, v)) {
+    case NumberText::kNotFinite:
+      return found(token) + ", which is not finite";
+    case NumberText::kOutOfRange:
+      return found(token) + ", which is out of the range of a double";
+    case NumberText::kFinite:
+    case NumberText::kNotANumber:
+      break;
+  }
+  return found(token);
+}
+
 // ---------------------------------------------------------------------------------------------
 // LineParser
 
@@ -290,7 +320,7 @@ double LineParser::finite(std::size_t i, const std::string& field,
                           std::string_view expected) const {
   double v = 0.0;
   if (!parseFinite(fields_[i], v))
-    fail(field, "expected " + std::string(expected) + ", " + found(fields_[i]));
+    fail(field, "expected " + std::string(expected) + ", " + foundNumber(fields_[i]));
   return v;
 }
 

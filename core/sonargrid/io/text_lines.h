@@ -125,6 +125,18 @@ void splitFields(std::string_view line, std::vector<std::string_view>& out);
 // empty or a comment gives none.
 void splitDelimited(std::string_view line, char delimiter, std::vector<std::string_view>& out);
 
+// What a number token of a log holds. Logs are written by C's printf (Player's writelog "%+07.3f",
+// CARMEN's logger "%f"/"%lf", spreadsheets and scripts), so a token is read as printf writes
+// one: an optional sign, '+' included, zero padding ("+00.500", "-01.250"), a fraction and an
+// exponent ("1.5e+03"), and inf/nan in either case ("inf", "-INF", "+nan", "-nan").
+enum class NumberText {
+  kFinite,
+  kNotFinite,   // inf or nan: a range, a pose or a time cannot be infinite
+  kOutOfRange,  // a number too large or too small for a double ("1e400", "1e-400")
+  kNotANumber,
+};
+NumberText parseNumber(std::string_view t, double& v);
+// parseNumber() == kFinite.
 bool parseFinite(std::string_view t, double& v);
 bool parseUnsigned(std::string_view t, unsigned long& v);
 // Shortest text that reads back to the same double.
@@ -134,6 +146,9 @@ std::string number(double v);
 std::string shown(std::string_view token);
 // "found 'TOKEN'", or "found nothing" for an empty token.
 std::string found(std::string_view token);
+// found(token), and for a token that reads as a number but not a finite one why it is refused:
+// "found 'inf', which is not finite", "found '1e400', which is out of the range of a double".
+std::string foundNumber(std::string_view token);
 
 // The frame of a line-oriented reader: it feeds each line, checked as UTF-8 text and split into
 // fields, to the reader's handler, and with LogOptions::lenient skips and counts the lines whose
@@ -166,7 +181,7 @@ class LineParser {
   }
 
   [[noreturn]] void fail(const std::string& field, const std::string& message) const;
-  // fields_[i] as a finite number, else fail(field, "expected <expected>, found '...'").
+  // fields_[i] as a finite number, else fail(field, "expected <expected>, " + foundNumber(...)).
   double finite(std::size_t i, const std::string& field, std::string_view expected) const;
   std::size_t lineNumber() const { return lines_.lineNumber(); }
 

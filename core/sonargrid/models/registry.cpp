@@ -2,8 +2,19 @@
 
 #include "sonargrid/models/cone_model.h"
 #include "sonargrid/models/model_classes.h"
+#include "sonargrid/registry_hooks.h"
 
 namespace sg {
+namespace {
+testing::SensorModelWrapper& modelWrapper() {
+  static testing::SensorModelWrapper wrap;
+  return wrap;
+}
+}  // namespace
+
+void testing::wrapSensorModels(SensorModelWrapper wrap) {
+  modelWrapper() = std::move(wrap);
+}
 
 ParameterSpec noEchoParameter(const std::string& freeMeaning) {
   // Default 0: a sonar that hears nothing has most often been reflected away by a surface seen at a
@@ -38,6 +49,7 @@ std::unique_ptr<SensorModel> makeSensorModel(const std::string& name) {
   else if (name == "himm")
     m = makeHimmModel();
   if (m) m->configure(ParameterSet(m->info().parameters));
+  if (m && modelWrapper()) m = modelWrapper()(std::move(m));
   return m;
 }
 

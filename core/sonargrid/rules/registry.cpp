@@ -1,8 +1,19 @@
 #include <stdexcept>
 
+#include "sonargrid/registry_hooks.h"
 #include "sonargrid/rules/rule_classes.h"
 
 namespace sg {
+namespace {
+testing::UpdateRuleWrapper& ruleWrapper() {
+  static testing::UpdateRuleWrapper wrap;
+  return wrap;
+}
+}  // namespace
+
+void testing::wrapUpdateRules(UpdateRuleWrapper wrap) {
+  ruleWrapper() = std::move(wrap);
+}
 
 std::vector<std::string> updateRuleNames() {
   return {"addition", "bayes", "bayes-recursive", "log", "logodds", "himm", "dempster-shafer"};
@@ -25,6 +36,7 @@ std::unique_ptr<UpdateRule> makeUpdateRule(const std::string& name) {
   else if (name == "dempster-shafer")
     r = std::make_unique<DempsterShaferRule>();
   if (r) r->configure(ParameterSet(r->info().parameters));
+  if (r && ruleWrapper()) r = ruleWrapper()(std::move(r));
   return r;
 }
 

@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <exception>
 #include <mutex>
-#include <thread>
 
+#include "sonargrid/concurrency.h"
 #include "sonargrid/mapper.h"
 #include "sonargrid/metrics/vsdns.h"
 
@@ -42,11 +41,14 @@ std::vector<ParameterSet> paper002Table1Sets(const ParameterSet& base) {
 
 namespace {
 
-// One map of one run with one set, scan by scan on the calling thread. Returns false if cancelled.
-bool mapRun(Mapper& mapper, const Dataset& data, const std::atomic<bool>* cancel) {
+// One map of one run with one set, scan by scan on the calling thread. Returns false if cancelled
+// or stopped (another thread failed).
+bool mapRun(Mapper& mapper, const Dataset& data, const std::atomic<bool>* cancel,
+            const std::atomic<bool>& stop) {
   mapper.reset();
   for (const Scan& scan : data.scans) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) return false;
+    if ((cancel && cancel->load(std::memory_order_relaxed)) || stop.load(std::memory_order_relaxed))
+      return false;
     mapper.integrate(scan);
   }
   return true;
@@ -67,57 +69,46 @@ SweepOutcome runSweep(const Dataset& run, const Dataset* secondRun,
 
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
-  std::mutex mutex;  // guards finished, out.done, failure and the progress calls
+  std::mutex mutex;  // guards finished, out.done and the progress calls
   std::size_t finished = 0;
-  std::exception_ptr failure;
 
-  auto work = [&] {
-    try {
-      while (!stop.load(std::memory_order_relaxed)) {
-        const std::size_t i = next.fetch_add(1, std::memory_order_relaxed);
-        if (i >= sets.size()) return;
-        MapperSettings ms;
-        ms.model = settings.model;
-        ms.rule = settings.rule;
-        ms.parameters = sets[i];
-        ms.pose = settings.pose;
-        Mapper mapper(run.ring, settings.grid, ms);
-        VsdnsAccumulator vsdns;
-        mapper.setObserver(&vsdns);
-        if (!mapRun(mapper, run, cancel)) return;
-        SweepRow row;
-        const VsdnsAccumulator::Result spread = vsdns.result();
-        row.vsdns = spread.vsdns;
-        row.cellsWithSpread = spread.cellsWithSpread;
-        const OccupancyMap first = mapper.snapshot();
-        row.noise = derivativeNoise(first);
-        if (secondRun) {
-          Mapper again(secondRun->ring, settings.grid, ms);
-          if (!mapRun(again, *secondRun, cancel)) return;
-          row.twoRuns = compareTwoRuns(first, again.snapshot());
-        }
-        out.rows[i] = row;
-        const std::lock_guard<std::mutex> lock(mutex);
-        out.done[i] = true;
-        ++finished;
-        if (progress) progress(finished, sets.size());
+  // Sets are handed out one at a time, so a thread that draws quick sets takes more of them. A
+  // failure (an error in one set, a thread that cannot start) stops the others at their next set
+  // or scan and reaches the caller from runParallel.
+  auto work = [&](unsigned) {
+    while (!stop.load(std::memory_order_relaxed)) {
+      const std::size_t i = next.fetch_add(1, std::memory_order_relaxed);
+      if (i >= sets.size()) return;
+      MapperSettings ms;
+      ms.model = settings.model;
+      ms.rule = settings.rule;
+      ms.parameters = sets[i];
+      ms.pose = settings.pose;
+      Mapper mapper(run.ring, settings.grid, ms);
+      VsdnsAccumulator vsdns;
+      mapper.setObserver(&vsdns);
+      if (!mapRun(mapper, run, cancel, stop)) return;
+      SweepRow row;
+      const VsdnsAccumulator::Result spread = vsdns.result();
+      row.vsdns = spread.vsdns;
+      row.cellsWithSpread = spread.cellsWithSpread;
+      const OccupancyMap first = mapper.snapshot();
+      row.noise = derivativeNoise(first);
+      if (secondRun) {
+        Mapper again(secondRun->ring, settings.grid, ms);
+        if (!mapRun(again, *secondRun, cancel, stop)) return;
+        row.twoRuns = compareTwoRuns(first, again.snapshot());
       }
-    } catch (...) {
+      out.rows[i] = row;
       const std::lock_guard<std::mutex> lock(mutex);
-      if (!failure) failure = std::current_exception();
-      stop.store(true);
+      out.done[i] = true;
+      ++finished;
+      if (progress) progress(finished, sets.size());
     }
   };
-
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned wanted = settings.threads == 0 ? hardware : settings.threads;
-  const auto threadCount =
-      static_cast<unsigned>(std::min<std::size_t>(wanted, std::max<std::size_t>(1, sets.size())));
-  std::vector<std::thread> threads;
-  for (unsigned k = 1; k < threadCount; ++k) threads.emplace_back(work);
-  work();
-  for (std::thread& t : threads) t.join();
-  if (failure) std::rethrow_exception(failure);
+  const auto threads =
+      static_cast<unsigned>(std::clamp<std::size_t>(sets.size(), 1, parallelThreads()));
+  runParallel(threads, work, [&] { stop.store(true); });
   out.completed = std::all_of(out.done.begin(), out.done.end(), [](bool b) { return b; });
   return out;
 }

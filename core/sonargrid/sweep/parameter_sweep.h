@@ -4,9 +4,10 @@
 // noise and, given a second run over the same route, the two-run comparison). What paper 002 does
 // with its 1440 maps (Table 1) and what `sonargrid-cli reproduce arafat` reruns.
 //
-// Parallelism: several sets are mapped at once, each by its own single-threaded Mapper (scan by
-// scan, which Mapper guarantees bit-identical to its threaded batch mapping). Row i always holds
-// set i, so the rows do not depend on the number of threads.
+// Parallelism: as many sets are mapped at once as the thread policy gives (concurrency.h), each by
+// its own single-threaded Mapper (scan by scan, which Mapper guarantees bit-identical to its
+// threaded batch mapping). Row i always holds set i, so the rows do not depend on the number of
+// threads.
 
 #include <atomic>
 #include <cstddef>
@@ -36,8 +37,7 @@ struct SweepSettings {
   std::string model = "parameterized";
   std::string rule = "bayes-recursive";
   PoseSource pose = PoseSource::Odometry;
-  GridSpec grid;         // one grid for every map (and both runs), so maps compare cell for cell
-  unsigned threads = 0;  // sets mapped at once; 0: one per hardware thread
+  GridSpec grid;  // one grid for every map (and both runs), so maps compare cell for cell
 };
 
 struct SweepRow {
@@ -60,7 +60,8 @@ using SweepProgress = std::function<void(std::size_t done, std::size_t total)>;
 // Maps `run` (and `secondRun`, if given) with every set. The cancel flag is checked between scans;
 // a cancelled sweep returns promptly with completed = false. Throws MapperError for an unknown or
 // incompatible model/rule, a reading naming a sonar the ring lacks, or --pose truth without true
-// poses; the first error of any thread is rethrown once every thread has stopped.
+// poses; the first error of any thread (or std::system_error for a thread that could not be
+// started) is rethrown once every thread has stopped.
 SweepOutcome runSweep(const Dataset& run, const Dataset* secondRun,
                       const std::vector<ParameterSet>& sets, const SweepSettings& settings,
                       const SweepProgress& progress = {},
