@@ -550,19 +550,21 @@ void TstMapper::growthKeepsEveryValue() {
 void TstMapper::dirtyRowsAreTheRowsWritten_data() {
   QTest::addColumn<QString>("model");
   QTest::addColumn<QString>("rule");
+  QTest::addColumn<unsigned>("threads");
   // One thread scan by scan, and a batch above the threshold for threads: stripes of rows
-  // (Bayes), stripes in step (addition normalises), the ordered pipeline (HIMM's axis line).
-  QTest::newRow("hpf x bayes") << "hpf"
-                               << "bayes";
-  QTest::newRow("hpf x addition") << "hpf"
-                                  << "addition";
-  QTest::newRow("himm x himm") << "himm"
-                               << "himm";
+  // (Bayes), stripes in step (addition normalises), the ordered pipeline (HIMM's axis line); on
+  // one thread and on three (which do not divide the stripes evenly).
+  for (const auto& [m, r] :
+       {std::pair{"hpf", "bayes"}, std::pair{"hpf", "addition"}, std::pair{"himm", "himm"}})
+    for (unsigned threads : {1u, 3u})
+      QTest::addRow("%s x %s, threads %u", m, r, threads) << m << r << threads;
 }
 
 void TstMapper::dirtyRowsAreTheRowsWritten() {
   QFETCH(QString, model);
   QFETCH(QString, rule);
+  QFETCH(unsigned, threads);
+  const ScopedThreadCount policy(threads);
   MapperSettings s;
   s.model = model.toStdString();
   s.rule = rule.toStdString();
