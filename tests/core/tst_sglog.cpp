@@ -13,8 +13,8 @@
 #include <sstream>
 #include <string>
 
+#include "sonargrid/base/log_error.h"
 #include "sonargrid/dataset.h"
-#include "sonargrid/io/log_error.h"
 #include "sonargrid/io/sglog.h"
 
 Q_DECLARE_METATYPE(sg::Dataset)

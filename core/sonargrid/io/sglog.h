@@ -6,8 +6,8 @@
 #include <iosfwd>
 #include <string>
 
+#include "sonargrid/base/log_error.h"
 #include "sonargrid/dataset.h"
-#include "sonargrid/io/log_error.h"
 #include "sonargrid/io/log_options.h"
 
 namespace sg {

@@ -1,4 +1,4 @@
-#include "sonargrid/reference/file_text.h"
+#include "sonargrid/base/file_text.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "sonargrid/io/log_error.h"
+#include "sonargrid/base/log_error.h"
 
-namespace sg::reference_io {
+namespace sg::file_text {
 namespace {
 
 std::string osReason(int err) {
@@ -112,4 +112,4 @@ std::string shown(std::string_view s, std::size_t max) {
   return out;
 }
 
-}  // namespace sg::reference_io
+}  // namespace sg::file_text
