@@ -17,10 +17,6 @@ inline constexpr std::size_t kMaxReferenceBytes = 64u * 1024u * 1024u;
 // regular file, or is larger than `maxBytes`.
 std::string readFileBytes(const std::string& path, std::size_t maxBytes = kMaxReferenceBytes);
 
-// Writes through a temporary sibling renamed over `path`; throws std::runtime_error naming the
-// path when it cannot.
-void writeFileAtomically(const std::string& path, const std::string& bytes);
-
 // The text split into lines (without their "\n" or "\r\n"), numbered from 1 by position.
 std::vector<std::string_view> splitLines(std::string_view text);
 

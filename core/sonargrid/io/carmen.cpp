@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "sonargrid/base/file_text.h"
+#include "sonargrid/base/atomic_file.h"
 #include "sonargrid/io/text_lines.h"
 
 namespace sg {
@@ -355,7 +355,7 @@ void writeCarmen(const Dataset& dataset, const std::string& path) {
   } catch (const std::runtime_error& e) {
     throw std::runtime_error("cannot write '" + path + "': " + e.what());
   }
-  file_text::writeFileAtomically(path, text);
+  writeFileAtomically(path, text);
 }
 
 }  // namespace sg

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sonargrid/base/atomic_file.h"
 #include "sonargrid/base/file_text.h"
 
 namespace sg {
@@ -495,7 +496,7 @@ std::string referenceJsonText(const ReferenceMap& map) {
 }
 
 void writeReferenceJson(const ReferenceMap& map, const std::string& path) {
-  file_text::writeFileAtomically(path, referenceJsonText(map));
+  writeFileAtomically(path, referenceJsonText(map));
 }
 
 }  // namespace sg
