@@ -596,12 +596,22 @@ void MainWindow::loadLog(const QString& path, const LogOptions& options, bool qu
     QMetaObject::invokeMethod(
         this, [this, job, percent] { showLoadProgress(job, percent); }, Qt::QueuedConnection);
   };
-  QThread* worker = QThread::create([this, job, o, file = QDir::toNativeSeparators(path)] {
+  QThread* worker = QThread::create([this, job, o, file = QDir::toNativeSeparators(path),
+                                     pose = settings_.pose, cell = cellSize_] {
     std::shared_ptr<const Dataset> loaded;
     QString error;
     bool cancelled = false;
     try {
       loaded = std::make_shared<const Dataset>(readLog(file.toStdString(), o));
+      // A log no grid can hold (a pose at 1e12 m) is refused here, so that the document open
+      // before stays; the pose source is the one adoptLog will map with.
+      try {
+        loaded->fittingGrid(pose == PoseSource::Truth && loaded->hasTruth() ? PoseSource::Truth
+                                                                            : PoseSource::Odometry,
+                            cell);
+      } catch (const GridLimitError& e) {
+        throw e.inFile(file.toStdString());
+      }
     } catch (const LoadCancelled&) {
       cancelled = true;
     } catch (const std::exception& e) {
