@@ -6,6 +6,8 @@
 #include <QDir>
 #include <QFile>
 #include <QImage>
+#include <QPainter>
+#include <QSvgGenerator>
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -33,6 +35,31 @@ class TstExportFile : public QObject {
     // PNG is lossless: the same pixels come back.
     QCOMPARE(QImage(path).convertToFormat(QImage::Format_RGB32), image);
     QCOMPARE(QDir(dir.path()).entryList(QDir::Files | QDir::Hidden), QStringList{"view.png"});
+  }
+
+  void svgThroughMemory() {
+    // The view's SVG export: QSvgGenerator draws into a buffer, the bytes go to the atomic writer.
+    QByteArray bytes;
+    QBuffer buffer(&bytes);
+    QVERIFY(buffer.open(QIODevice::WriteOnly));
+    QSvgGenerator svg;
+    svg.setOutputDevice(&buffer);
+    svg.setSize(QSize(40, 30));
+    svg.setViewBox(QRect(0, 0, 40, 30));
+    QPainter painter;
+    QVERIFY(painter.begin(&svg));
+    painter.drawLine(0, 0, 40, 30);
+    painter.end();
+    QVERIFY(bytes.contains("<svg") && bytes.trimmed().endsWith("</svg>"));
+
+    QTemporaryDir dir;
+    QVERIFY(dir.isValid());
+    const QString path = dir.filePath("view.svg");
+    QCOMPARE(sg::app::writeFileBytes(path, bytes), QString());
+    QFile file(path);
+    QVERIFY(file.open(QIODevice::ReadOnly));
+    QCOMPARE(file.readAll(), bytes);
+    QCOMPARE(QDir(dir.path()).entryList(QDir::Files | QDir::Hidden), QStringList{"view.svg"});
   }
 
   void unknownFormatGivesNoBytes() {
