@@ -85,12 +85,12 @@ QImage renderGridCells(const OccupancyMap* map, const LevelPalette& palette,
   std::vector<int> columnCell(static_cast<std::size_t>(size.width()));
   for (int px = 0; px < size.width(); ++px) {
     const double x = view.toWorld(QPointF(px + 0.5, 0.0), size).x();
-    const int ix = static_cast<int>(std::floor((x - g.origin.x()) / g.cellSize));
+    const int ix = GridSpec::cellCoordinate((x - g.origin.x()) / g.cellSize);
     columnCell[static_cast<std::size_t>(px)] = ix >= 0 && ix < g.width ? ix : -1;
   }
   for (int py = 0; py < size.height(); ++py) {
     const double y = view.toWorld(QPointF(0.0, py + 0.5), size).y();
-    const int iy = static_cast<int>(std::floor((y - g.origin.y()) / g.cellSize));
+    const int iy = GridSpec::cellCoordinate((y - g.origin.y()) / g.cellSize);
     if (iy < 0 || iy >= g.height) continue;
     auto* line = reinterpret_cast<QRgb*>(image.scanLine(py));
     const std::uint8_t* row = map->level.data() + static_cast<std::size_t>(iy) * g.width;

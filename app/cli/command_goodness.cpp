@@ -39,8 +39,15 @@ int runGoodness(Arguments& args) {
   const Dataset first = loadLog(o.log, o.read);
   std::optional<Dataset> second;
   if (secondLog) second = loadLog(*secondLog, o.read);
-  GridSpec grid = first.fittingGrid(o.settings.pose, o.cell);
-  if (second) grid = commonGrid(grid, second->fittingGrid(o.settings.pose, o.cell));
+  GridSpec grid = fittingGridOf(first, o, o.log);
+  if (second) {
+    const GridSpec other = fittingGridOf(*second, o, *secondLog);
+    try {
+      grid = commonGrid(grid, other);
+    } catch (const GridLimitError& e) {
+      throw e.inFile(o.log + " and " + *secondLog);  // each fits; the two together do not
+    }
+  }
 
   VsdnsAccumulator vsdns;
   const BuiltMap run = buildMap(first, o, o.log, grid, &vsdns);

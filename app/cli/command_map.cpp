@@ -5,7 +5,6 @@
 #include <chrono>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "commands.h"
 #include "map_options.h"
@@ -13,10 +12,6 @@
 #include "thread_flags.h"
 
 namespace sg::cli {
-namespace {
-// A grid beyond this many cells is almost surely a unit mistake (--cell 0.0001), not a map.
-constexpr double kMaxCells = 200e6;
-}  // namespace
 
 MapOptions parseMapOptions(Arguments& args) {
   MapOptions o;
@@ -69,18 +64,20 @@ MapOptions parseMapOptions(Arguments& args) {
   return o;
 }
 
+GridSpec fittingGridOf(const Dataset& data, const MapOptions& o, const std::string& logPath) {
+  try {
+    return data.fittingGrid(o.settings.pose, o.cell);
+  } catch (const GridLimitError& e) {
+    throw e.inFile(logPath);
+  }
+}
+
 BuiltMap buildMap(const Dataset& data, const MapOptions& o, const std::string& logPath,
                   const std::optional<GridSpec>& onGrid, FootprintObserver* observer) {
   if (o.settings.pose == PoseSource::Truth && !data.hasTruth()) {
     throw InputError(logPath + ": the log has no true pose for every scan; map with --pose odom");
   }
-  const GridSpec grid = onGrid ? *onGrid : data.fittingGrid(o.settings.pose, o.cell);
-  if (static_cast<double>(grid.width) * grid.height > kMaxCells) {
-    std::ostringstream msg;
-    msg << "--cell " << o.cell << " makes a grid of " << grid.width << " x " << grid.height
-        << " cells; choose a larger cell";
-    throw UsageError(msg.str());
-  }
+  const GridSpec grid = onGrid ? *onGrid : fittingGridOf(data, o, logPath);
   BuiltMap out;
   try {
     Mapper mapper(data.ring, grid, o.settings);

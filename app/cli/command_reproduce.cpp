@@ -9,7 +9,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -17,6 +16,7 @@
 #include "commands.h"
 #include "map_options.h"
 #include "reproduce.h"
+#include "sonargrid/base/atomic_file.h"
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/reference/read_reference.h"
 #include "thread_flags.h"
@@ -105,10 +105,7 @@ fs::path paperDirectory(const Context& ctx, const std::string& name) {
 }
 
 void writeText(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  out.close();
-  if (!out) throw std::runtime_error("cannot write '" + path.string() + "'");
+  writeFileAtomically(path.string(), text);
 }
 
 std::string Table::markdown() const {

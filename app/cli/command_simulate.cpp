@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "sonargrid/io/log_error.h"
+#include "sonargrid/base/log_error.h"
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/reference/reference_json.h"
 #include "sonargrid/sim/simulation.h"

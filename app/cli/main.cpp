@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "sonargrid/grid_spec.h"
 
 namespace {
 
@@ -77,6 +78,10 @@ int main(int argc, char** argv) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';
     return 2;
   } catch (const sg::cli::InputError& e) {
+    std::cerr << "sonargrid-cli: " << e.what() << '\n';
+    return 2;
+  } catch (const sg::GridLimitError& e) {
+    // A log whose grid cannot be made (a pose at 1e12 m, a cell far too small): input to fix.
     std::cerr << "sonargrid-cli: " << e.what() << '\n';
     return 2;
   } catch (const std::exception& e) {

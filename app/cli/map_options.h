@@ -43,6 +43,9 @@ struct BuiltMap {
   std::size_t readings = 0;
   double elapsedMs = 0.0;  // mapping only, not reading the log
 };
+// The log's fitting grid at --cell; GridLimitError naming `logPath`, the scan and the grid limit
+// when it cannot be made (main() makes that exit status 2).
+GridSpec fittingGridOf(const Dataset& data, const MapOptions& options, const std::string& logPath);
 // Maps `data`, read from `logPath` (for messages), on `grid` — by default the log's own fitting
 // grid at --cell — feeding `observer` (if any) every footprint.
 BuiltMap buildMap(const Dataset& data, const MapOptions& options, const std::string& logPath,

@@ -58,7 +58,8 @@ void writeMapWithReference(const OccupancyMap& map, const ReferenceMap& referenc
 
 // Creates ctx.out / name (and parents); std::runtime_error naming it on failure.
 fs::path paperDirectory(const Context& ctx, const std::string& name);
-// Writes `text` to `path`; std::runtime_error naming the path on failure.
+// Writes `text` to `path` atomically (base/atomic_file.h); FileWriteError naming the path on
+// failure.
 void writeText(const fs::path& path, const std::string& text);
 
 // Tables written twice: Markdown for reading, CSV for scripts.

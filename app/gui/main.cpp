@@ -5,12 +5,14 @@
 
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QFileInfo>
 #include <QPixmap>
 #include <QScreen>
 #include <QTimer>
 #include <cmath>
 #include <iostream>
 
+#include "export_file.h"
 #include "main_window.h"
 #include "preferences.h"
 #include "sonargrid/concurrency.h"
@@ -166,8 +168,15 @@ int main(int argc, char** argv) {
     // surface included); elsewhere let the widgets render themselves.
     const bool onScreen = QGuiApplication::platformName() == QLatin1String("xcb");
     const QPixmap shot = onScreen ? window.screen()->grabWindow(window.winId()) : window.grab();
-    if (!shot.save(file)) {
-      std::cerr << "sonargrid: cannot write " << file.toStdString() << '\n';
+    // The format follows the name's suffix, as QPixmap::save(file) would choose it.
+    const QString suffix = QFileInfo(file).suffix();
+    const QByteArray format = suffix.isEmpty() ? QByteArray("PNG") : suffix.toLatin1();
+    const QByteArray bytes = sg::app::encodedImage(shot.toImage(), format.constData());
+    const QString error = bytes.isEmpty()
+                              ? file + QStringLiteral(": cannot encode the screenshot as ") + format
+                              : sg::app::writeFileBytes(file, bytes);
+    if (!error.isEmpty()) {
+      std::cerr << "sonargrid: " << error.toStdString() << '\n';
       return 1;
     }
     std::cout << "wrote " << file.toStdString() << '\n';

@@ -3,6 +3,7 @@
 #include <QAction>
 #include <QActionGroup>
 #include <QApplication>
+#include <QBuffer>
 #include <QCloseEvent>
 #include <QComboBox>
 #include <QDialog>
@@ -39,6 +40,7 @@
 #include "beam_model_view.h"
 #include "csv_import_dialog.h"
 #include "datasets_location.h"
+#include "export_file.h"
 #include "parameter_panel.h"
 #include "preferences.h"
 #include "remap_controller.h"
@@ -594,12 +596,22 @@ void MainWindow::loadLog(const QString& path, const LogOptions& options, bool qu
     QMetaObject::invokeMethod(
         this, [this, job, percent] { showLoadProgress(job, percent); }, Qt::QueuedConnection);
   };
-  QThread* worker = QThread::create([this, job, o, file = QDir::toNativeSeparators(path)] {
+  QThread* worker = QThread::create([this, job, o, file = QDir::toNativeSeparators(path),
+                                     pose = settings_.pose, cell = cellSize_] {
     std::shared_ptr<const Dataset> loaded;
     QString error;
     bool cancelled = false;
     try {
       loaded = std::make_shared<const Dataset>(readLog(file.toStdString(), o));
+      // A log no grid can hold (a pose at 1e12 m) is refused here, so that the document open
+      // before stays; the pose source is the one adoptLog will map with.
+      try {
+        loaded->fittingGrid(pose == PoseSource::Truth && loaded->hasTruth() ? PoseSource::Truth
+                                                                            : PoseSource::Odometry,
+                            cell);
+      } catch (const GridLimitError& e) {
+        throw e.inFile(file.toStdString());
+      }
     } catch (const LoadCancelled&) {
       cancelled = true;
     } catch (const std::exception& e) {
@@ -964,27 +976,34 @@ void MainWindow::exportViewPng() {
   if (data_ && !mapComplete()) return;
   const QString path = saveFileName(tr("Export View as PNG"), tr("PNG images (*.png)"), ".png");
   if (path.isEmpty()) return;
-  if (!view_->renderImage().save(path, "PNG"))
-    reportError(tr("Export failed"), path + tr(": cannot be written"), false);
+  const QByteArray png = app::encodedImage(view_->renderImage(), "PNG");
+  const QString error = png.isEmpty() ? path + tr(": the image cannot be encoded as PNG")
+                                      : app::writeFileBytes(path, png);
+  if (!error.isEmpty()) reportError(tr("Export failed"), error, false);
 }
 
 void MainWindow::exportViewSvg() {
   if (data_ && !mapComplete()) return;
   const QString path = saveFileName(tr("Export View as SVG"), tr("SVG drawings (*.svg)"), ".svg");
   if (path.isEmpty()) return;
+  QByteArray bytes;
+  QBuffer buffer(&bytes);
+  buffer.open(QIODevice::WriteOnly);
   QSvgGenerator svg;
-  svg.setFileName(path);
+  svg.setOutputDevice(&buffer);
   svg.setSize(view_->size());
   svg.setViewBox(QRect(QPoint(0, 0), view_->size()));
   svg.setTitle(windowTitle());
   svg.setDescription(tr("Occupancy grid exported by SonarGrid"));
   QPainter painter;
   if (!painter.begin(&svg)) {
-    reportError(tr("Export failed"), path + tr(": cannot be written"), false);
+    reportError(tr("Export failed"), path + tr(": the drawing cannot be made"), false);
     return;
   }
   view_->paintVector(painter);
   painter.end();
+  if (const QString error = app::writeFileBytes(path, bytes); !error.isEmpty())
+    reportError(tr("Export failed"), error, false);
 }
 
 void MainWindow::exportMapPng() {

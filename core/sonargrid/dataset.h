@@ -52,6 +52,10 @@ struct Dataset {
   // The grid of `cellSize` that holds every robot and sonar position and every echo (the points at
   // the reading's range on the acoustic axis and on both cone edges), grown by `margin` metres.
   // A log without a single echo gets the positions grown by the maximum range.
+  // Throws GridLimitError when that grid cannot be made: a position that is not finite, or more
+  // cells than kMaxGridCells. Its message names the scan (index and time) that reaches farthest
+  // from the middle of the robot's path, that point, the extent and the limit; the caller adds the
+  // file name (GridLimitError::inFile).
   GridSpec fittingGrid(PoseSource source, double cellSize, double margin = 0.5) const;
 
   bool operator==(const Dataset&) const = default;

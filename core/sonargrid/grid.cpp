@@ -97,7 +97,7 @@ bool Grid::covers(const Position& lo, const Position& hi) const {
 
 bool Grid::growToCover(const Position& lo, const Position& hi) {
   if (!lo.allFinite() || !hi.allFinite()) {
-    throw GridError("cannot grow the grid to cover a position that is not finite");
+    throw GridLimitError("cannot grow the grid to cover a position that is not finite");
   }
   if (covers(lo, hi)) return false;
   const Need n = need(lo, hi);
@@ -105,15 +105,15 @@ bool Grid::growToCover(const Position& lo, const Position& hi) {
   const double c = spec_.cellSize;
   const double w = spec_.width, h = spec_.height;
 
-  const double cap = static_cast<double>(kMaxGrowCells);
+  const double cap = static_cast<double>(kMaxGridCells);
   auto cells = [&](double l, double r, double b, double t) { return (w + l + r) * (h + b + t); };
   if (!(cells(needLeft, needRight, needBottom, needTop) <= cap)) {
     std::ostringstream msg;
     msg << "the grid would need " << w + needLeft + needRight << " x " << h + needBottom + needTop
         << " cells of " << c << " m to cover [" << lo.x() << ", " << hi.x() << "] x [" << lo.y()
-        << ", " << hi.y() << "] m, more than the limit of " << kMaxGrowCells
+        << ", " << hi.y() << "] m, more than the limit of " << kMaxGridCells
         << " cells; choose larger cells";
-    throw GridError(msg.str());
+    throw GridLimitError(msg.str());
   }
   // Slack: half the grid's extent along that axis on each side that must grow, so that a robot
   // driving on regrows after as far again; less where that would pass the limit.

@@ -27,14 +27,11 @@
 
 namespace sg {
 
+// A grid that cannot be made: no cells at all. (Too many cells is GridLimitError, grid_spec.h.)
 class GridError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
-
-// The most cells a grid may grow to: the CLI's bound on a map's size (docs/cli.md), 3.2 GB of
-// 16-byte cells.
-inline constexpr std::size_t kMaxGrowCells = 200'000'000;
 
 // What a rule keeps per cell, in one or more planes: each plane holds one value of a trivially
 // copyable type per cell, and says its value in a cell nobody has seen. Parts of a cell's state
@@ -103,7 +100,7 @@ class Grid {
   // A grid of no cells, to be given a real one by assignment.
   Grid() = default;
   // Every cell unknown and unobserved, every row dirty. Throws GridError for an empty grid. (Its
-  // size is the caller's to bound; kMaxGrowCells bounds only growth.)
+  // size is the caller's to bound, as GridSpec::covering() does; growth checks kMaxGridCells.)
   Grid(const GridSpec& spec, const CellLayout& layout);
   Grid(Grid&&) noexcept = default;
   Grid& operator=(Grid&&) noexcept = default;
@@ -156,8 +153,9 @@ class Grid {
   bool covers(const Position& lo, const Position& hi) const;
   // Grows the grid, if it must, until it covers the world box [lo, hi], with slack: a side that
   // must grow grows by at least half the grid's size along it, unless that would pass
-  // kMaxGrowCells. Returns whether the spec changed (then every row is dirty). Throws GridError
-  // when the box needs more than kMaxGrowCells cells or is not finite; the grid is then unchanged.
+  // kMaxGridCells. Returns whether the spec changed (then every row is dirty). Throws
+  // GridLimitError when the box needs more than kMaxGridCells cells or is not finite; the grid is
+  // then unchanged.
   bool growToCover(const Position& lo, const Position& hi);
 
   // Dirty rows: those written since the last takeDirtyRuns(), or every row after construction,

@@ -409,7 +409,7 @@ bool Mapper::grow(const Position& lo, const Position& hi) {
   }
   try {
     grid_.growToCover(lo, hi);
-  } catch (const GridError& e) {
+  } catch (const GridLimitError& e) {
     throw MapperError(e.what());
   }
   return grid_.spec() != before;

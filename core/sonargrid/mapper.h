@@ -88,7 +88,7 @@ class Mapper {
   // batches gives, bit for bit, what mapDataset() of all of them gives on the grid's final limits.
   // With PoseSource::Truth every scan must have a true pose. Returns false when `cancel` stopped it
   // part-way (then map again or reset). Throws MapperError for a reading naming a sonar the ring
-  // does not have, a scan without the pose asked for, a grid that would pass kMaxGrowCells, or an
+  // does not have, a scan without the pose asked for, a grid that would pass kMaxGridCells, or an
   // observer when the grid must grow (it counts cells of the old limits).
   bool append(std::span<const Scan> scans, double until = std::numeric_limits<double>::infinity(),
               const std::atomic<bool>* cancel = nullptr);

@@ -826,6 +826,35 @@ void TstCli::errors_data() {
       << 2 << noTruthLog_ + ": the log has no true pose for every scan; map with --pose odom"
       << true;
 
+  // A log no grid can hold is input to fix (exit 2), not a 1 x 38 grid (an int overflow) and exit
+  // 0. tests/data/sglog/far_pose.sglog: scans at x = 0 and 0.25 with 1 m echoes on a 25° cone
+  // (edges at y = ±sin 12.5° = ±0.21644), and scan 2 at x = 1e12. At 5 cm with the 0.5 m margin: x
+  // from -0.5, (1e12 + 1) / 0.05 = 20000000000020 cells; y from floor(-0.71644 / 0.05) = -15 cells,
+  // (0.71644 + 0.75) / 0.05 = 29.3 -> 30 cells. Scan 2 is the one far from the middle of the path.
+  const QString far = QStringLiteral(SONARGRID_TEST_DATA "/sglog/far_pose.sglog");
+  const QString farMessage =
+      far +
+      ": scan 2 (t = 1 s) reaches (1e+12, 0) m: x 0 to 1e+12 m, y -0.21644 to 0.21644 m grown by "
+      "0.5 m make a grid of 20000000000020 x 30 cells of 0.05 m, more than the grid limit of "
+      "200000000 cells";
+  QTest::newRow("a pose at x = 1e12 m")
+      << QStringList{"map", "--log", far, "--model", "hpf", "--rule", "bayes"} << 2 << farMessage
+      << true;
+  QTest::newRow("a pose at x = 1e12 m, --png")
+      << QStringList{"map",     "--log", far,
+                     "--model", "hpf",   "--rule",
+                     "bayes",   "--png", tmp_.filePath("missing/far.png")}
+      << 2 << farMessage << true;
+  QTest::newRow("goodness, a pose at x = 1e12 m")
+      << QStringList{"goodness", "--log", far, "--model", "hpf", "--rule", "bayes"} << 2
+      << farMessage << true;
+  // The office (about 35 m x 27 m) at 1 mm: a real log, but 35791 x 27261 cells is more than the
+  // limit. The message names the log and a scan at the edge of the extent.
+  const QString office = QStringLiteral(SONARGRID_DATASETS "/office/office.sglog");
+  QTest::newRow("a cell too small for the log")
+      << QStringList{"map", "--log", office, "--model", "hpf", "--rule", "bayes", "--cell", "0.001"}
+      << 2 << office + ": scan " << false;
+
   QTest::newRow("extra argument") << map + QStringList{"extra"} << 2
                                   << "unexpected argument 'extra'" << true;
   QTest::newRow("unknown option") << map + QStringList{"--colour"} << 2

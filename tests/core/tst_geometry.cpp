@@ -191,8 +191,13 @@ class TstGeometry : public QObject {
   void cellRoundTrips();
   void covering_data();
   void covering();
+  void coveringRefused_data();
+  void coveringRefused();
   void fittingGrid_data();
   void fittingGrid();
+  void fittingGridRefused_data();
+  void fittingGridRefused();
+  void gridLimitErrorInFile();
 
   void parameterSetGet();
   void parameterErrors_data();
@@ -512,6 +517,16 @@ void TstGeometry::worldToCell_data() {
   QTest::addRow("offset origin") << -1.0 << -2.0 << 0.5 << 0.2 << -0.7 << 2 << 2;
   // Left of an offset origin: (-1.3 + 1) / 0.5 = -0.6 -> -1; (-2.75 + 2) / 0.5 = -1.5 -> -2.
   QTest::addRow("left of offset origin") << -1.0 << -2.0 << 0.5 << -1.3 << -2.75 << -1 << -2;
+  // Far and non-finite points give +-2^28 = 268435456 on that axis (grid_spec.h): outside every
+  // grid, never an int overflow. 1e12 / 0.25 = 4e12 cells; 2^28 - 1 cells is still exact.
+  constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  QTest::addRow("1e12") << 0.0 << 0.0 << 0.25 << 1e12 << 0.6 << 268435456 << 2;
+  QTest::addRow("-1e12") << 0.0 << 0.0 << 0.25 << 0.6 << -1e12 << 2 << -268435456;
+  QTest::addRow("NaN") << 0.0 << 0.0 << 0.25 << kNan << kNan << -268435456 << -268435456;
+  QTest::addRow("inf, -inf") << 0.0 << 0.0 << 0.25 << kInf << -kInf << 268435456 << -268435456;
+  QTest::addRow("2^28 - 1 cells") << 0.0 << 0.0 << 1.0 << 268435455.5 << -268435455.5 << 268435455
+                                  << -268435456;
 }
 
 void TstGeometry::worldToCell() {
@@ -601,6 +616,96 @@ void TstGeometry::covering_data() {
       << -2.3 << -0.2 << -1.05 << 0.3 << 0.5 << 0.1 << -2.5 << -0.5 << 4 << 2;
   // An empty box on a lattice point still gets one cell: origin (1, 1), ceil(0) = 0 -> 1.
   QTest::addRow("empty box") << 1.0 << 1.0 << 1.0 << 1.0 << 1.0 << 0.0 << 1.0 << 1.0 << 1 << 1;
+  // The cap itself (sg::kMaxGridCells = 2e8) is allowed: 1 m cells, ceil(19999.5) = 20000 columns,
+  // ceil(9999.5) = 10000 rows.
+  QTest::addRow("at the limit") << 0.0 << 0.0 << 19999.5 << 9999.5 << 1.0 << 0.0 << 0.0 << 0.0
+                                << 20000 << 10000;
+  // Far from the origin but small: a log at 1e12 m is fine as long as it stays together.
+  // floor((1e12 - 0.5) / 0.5) = 1999999999999 cells -> 999999999999.5; (1e12 + 1.5 -
+  // 999999999999.5) / 0.5 = 4 columns; y floor(-0.5 / 0.5) = -1 -> -0.5, (0.5 + 0.5) / 0.5 = 2
+  // rows.
+  QTest::addRow("far but small") << 1e12 << 0.0 << 1e12 + 1.0 << 0.0 << 0.5 << 0.5 << 999999999999.5
+                                 << -0.5 << 4 << 2;
+}
+
+void TstGeometry::coveringRefused_data() {
+  QTest::addColumn<double>("lox");
+  QTest::addColumn<double>("loy");
+  QTest::addColumn<double>("hix");
+  QTest::addColumn<double>("hiy");
+  QTest::addColumn<double>("cell");
+  QTest::addColumn<double>("margin");
+  QTest::addColumn<QString>("message");
+
+  constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const QString limit = QStringLiteral(", more than the grid limit of 200000000 cells");
+  // 1e12 / 0.05 = 2e13 columns (an int would overflow; the old code made 1 of them).
+  QTest::addRow("x = 1e12") << 0.0 << 0.0 << 1e12 << 0.0 << 0.05 << 0.0
+                            << "x 0 to 1e+12 m, y 0 to 0 m make a grid of 20000000000000 x 1 "
+                               "cells of 0.05 m" +
+                                   limit;
+  // Origin floor(-1e12 / 0.05) = -2e13 cells, the same 2e13 columns.
+  QTest::addRow("x = -1e12") << -1e12 << 0.0 << 0.0 << 0.0 << 0.05 << 0.0
+                             << "x -1e+12 to 0 m, y 0 to 0 m make a grid of 20000000000000 x 1 "
+                                "cells of 0.05 m" +
+                                    limit;
+  // The cap at 1 m cells: 20000 x 10000 = 2e8 is allowed (covering_data, "at the limit"); one row
+  // more, 20000 x 10001 = 200,020,000, is not.
+  QTest::addRow("just over the limit")
+      << 0.0 << 0.0 << 19999.5 << 10000.5 << 1.0 << 0.0
+      << "x 0 to 19999.5 m, y 0 to 10000.5 m make a grid of 20000 x 10001 cells of 1 m" + limit;
+  // One side alone beyond the cap: 200,000,001 columns of one row.
+  QTest::addRow("one side over the limit")
+      << 0.0 << 0.0 << 200000000.5 << 0.0 << 1.0 << 0.0
+      << "x 0 to 2e+08 m, y 0 to 0 m make a grid of 200000001 x 1 cells of 1 m" + limit;
+  // 2e300 / 1e-3 = 2e303 cells a side: the product is inf, each side is checked first.
+  QTest::addRow("sides beyond any integer")
+      << -1e300 << -1e300 << 1e300 << 1e300 << 0.001 << 0.0
+      << "x -1e+300 to 1e+300 m, y -1e+300 to 1e+300 m make a grid of 2e+303 x 2e+303 cells of "
+         "0.001 m" +
+             limit;
+  // The margin counts: 0.5 m either side of a point at 0.05 m is 20 cells, at 1e-5 m it is
+  // 100000 x 100000 = 1e10 cells.
+  QTest::addRow("margin makes it too large")
+      << 0.0 << 0.0 << 0.0 << 0.0 << 1e-5 << 0.5
+      << "x 0 to 0 m, y 0 to 0 m grown by 0.5 m make a grid of 100000 x 100000 cells of 1e-05 m" +
+             limit;
+  QTest::addRow("NaN") << kNan << 0.0 << 1.0 << 1.0 << 0.05 << 0.5
+                       << "the extent is not finite: x nan to 1 m, y 0 to 1 m";
+  QTest::addRow("inf") << 0.0 << 0.0 << kInf << 1.0 << 0.05 << 0.5
+                       << "the extent is not finite: x 0 to inf m, y 0 to 1 m";
+  QTest::addRow("-inf") << 0.0 << -kInf << 1.0 << 1.0 << 0.05 << 0.5
+                        << "the extent is not finite: x 0 to 1 m, y -inf to 1 m";
+  QTest::addRow("cell 0") << 0.0 << 0.0 << 1.0 << 1.0 << 0.0 << 0.5
+                          << "the cell size is 0 m; it must be a positive, finite number of metres";
+  QTest::addRow("cell NaN") << 0.0 << 0.0 << 1.0 << 1.0 << kNan << 0.5
+                            << "the cell size is nan m; it must be a positive, finite number of "
+                               "metres";
+  QTest::addRow("cell negative")
+      << 0.0 << 0.0 << 1.0 << 1.0 << -0.05 << 0.5
+      << "the cell size is -0.05 m; it must be a positive, finite number of metres";
+  QTest::addRow("margin inf") << 0.0 << 0.0 << 1.0 << 1.0 << 0.05 << kInf
+                              << "the margin inf m is not finite";
+}
+
+void TstGeometry::coveringRefused() {
+  QFETCH(double, lox);
+  QFETCH(double, loy);
+  QFETCH(double, hix);
+  QFETCH(double, hiy);
+  QFETCH(double, cell);
+  QFETCH(double, margin);
+  QFETCH(QString, message);
+  try {
+    const sg::GridSpec g =
+        sg::GridSpec::covering(sg::Position(lox, loy), sg::Position(hix, hiy), cell, margin);
+    QFAIL(qPrintable(QStringLiteral("made a grid of %1 x %2 cells").arg(g.width).arg(g.height)));
+  } catch (const sg::GridLimitError& e) {
+    QCOMPARE(QString::fromStdString(e.what()), message);
+    QCOMPARE(QString::fromStdString(e.message()), message);
+    QVERIFY(e.file().empty());
+  }
 }
 
 void TstGeometry::covering() {
@@ -713,6 +818,93 @@ void TstGeometry::fittingGrid_data() {
   // ceil(0.9 / 0.25 = 3.6) = 4 cells.
   d.scans.clear();
   QTest::addRow("no scans") << d << false << 0.4 << -0.5 << -0.5 << 4 << 4;
+}
+
+void TstGeometry::fittingGridRefused_data() {
+  QTest::addColumn<sg::Dataset>("dataset");
+  QTest::addColumn<QString>("message");
+
+  constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const double none = sg::Reading::kNoEcho;
+  const QString limit = QStringLiteral(", more than the grid limit of 200000000 cells");
+  sg::Dataset d = twoSonarDataset();
+  // The two scans of the "echoes" row (box (0.5, -1.75) to (3, 2)), at t = 0 and 1 s, then a
+  // third at t = 2 s whose pose is 1e12 m away: its sonars sit at x = 1e12 +- 0.5. The robot's
+  // median position is (3, 0), so scan 2 is the one named, at its front sonar (1e12 + 0.5, 0).
+  // 0.25 m cells, 0.5 m margin: origin x 0, y floor(-2.25 / 0.25) = -9 -> -2.25; columns
+  // (1e12 + 1) / 0.25 = 4000000000004; rows (2.5 + 2.25) / 0.25 = 19.
+  d.scans = {scanAt(sg::Pose2D(1, 2, 0), 1.0, none), scanAt(sg::Pose2D(3, -1, kPi / 2), 0.75, 0.25),
+             scanAt(sg::Pose2D(1e12, 0, 0), none, none)};
+  for (std::size_t i = 0; i < d.scans.size(); ++i) d.scans[i].time = double(i);
+  QTest::addRow("a pose at x = 1e12")
+      << d
+      << "scan 2 (t = 2 s) reaches (1e+12, 0) m: x 0.5 to 1e+12 m, y -1.75 to 2 m grown by 0.5 m "
+         "make a grid of 4000000000004 x 19 cells of 0.25 m" +
+             limit;
+  // The same pose at -1e12: its back sonar (-1e12 - 0.5, 0) is the farthest point. Origin x
+  // floor((-1e12 - 1) / 0.25) = -4000000000004 cells -> -1000000000001; columns
+  // (3.5 + 1000000000001) / 0.25 = 4000000000018.
+  d.scans[2].odometry = sg::Pose2D(-1e12, 0, 0);
+  QTest::addRow("a pose at x = -1e12")
+      << d
+      << "scan 2 (t = 2 s) reaches (-1e+12, 0) m: x -1e+12 to 3 m, y -1.75 to 2 m grown by 0.5 m "
+         "make a grid of 4000000000018 x 19 cells of 0.25 m" +
+             limit;
+  // The far scan first: the median still names it (robots x 1e12, 1, 3 -> median 3).
+  sg::Dataset first = d;
+  first.scans = {scanAt(sg::Pose2D(1e12, 0, 0), none, none), d.scans[0], d.scans[1]};
+  first.scans[0].time = 0.5;
+  QTest::addRow("the first scan far")
+      << first
+      << "scan 0 (t = 0.5 s) reaches (1e+12, 0) m: x 0.5 to 1e+12 m, y -1.75 to 2 m grown by "
+         "0.5 m make a grid of 4000000000004 x 19 cells of 0.25 m" +
+             limit;
+  // Not finite (possible in memory; the readers refuse it): the first point that is not, in scan
+  // order, sonar 0 before the robot. Robot (NaN, -1) heading 90°: sonar 0 at (NaN, -0.5).
+  d.scans[2].odometry = sg::Pose2D(3, -1, kPi / 2);
+  d.scans[1].odometry = sg::Pose2D(kNan, -1, kPi / 2);
+  QTest::addRow("NaN pose") << d
+                            << "scan 1 (t = 1 s) has a position that is not finite: (nan, -0.5) m";
+  d.scans[1].odometry = sg::Pose2D(3, -1, kPi / 2);
+  d.scans[2].odometry = sg::Pose2D(kInf, 0, 0);
+  QTest::addRow("infinite pose")
+      << d << "scan 2 (t = 2 s) has a position that is not finite: (inf, 0) m";
+  // No echo at all and a 1e9 m maximum range: the positions fit, the margin max_range + 0.5 does
+  // not. Sonars (0.5, 2) and (1.5, 2); origin x floor((0.5 - 1e9 - 0.5) / 0.25) -> -1e9, y
+  // floor((2 - 1e9 - 0.5) / 0.25) = -3999999994 -> -999999998.5; columns (1.5 + 1e9 + 0.5 + 1e9)
+  // / 0.25 = 8000000008, rows (2 + 1e9 + 0.5 + 999999998.5) / 0.25 = 8000000004.
+  sg::Dataset noEcho = twoSonarDataset();
+  noEcho.ring.maxRange = 1e9;
+  noEcho.scans = {scanAt(sg::Pose2D(1, 2, 0), none, none)};
+  QTest::addRow("no echo, huge max_range")
+      << noEcho
+      << "no reading has an echo, so the grid reaches max_range 1e+09 m beyond every sonar: x 0.5 "
+         "to 1.5 m, y 2 to 2 m grown by 1e+09 m make a grid of 8000000008 x 8000000004 cells of "
+         "0.25 m" +
+             limit;
+}
+
+void TstGeometry::fittingGridRefused() {
+  QFETCH(sg::Dataset, dataset);
+  QFETCH(QString, message);
+  try {
+    const sg::GridSpec g = dataset.fittingGrid(sg::PoseSource::Odometry, 0.25);
+    QFAIL(qPrintable(QStringLiteral("made a grid of %1 x %2 cells").arg(g.width).arg(g.height)));
+  } catch (const sg::GridLimitError& e) {
+    QCOMPARE(QString::fromStdString(e.what()), message);
+  }
+}
+
+void TstGeometry::gridLimitErrorInFile() {
+  // The caller that knows the file puts it in front; the type stays, so the CLI still maps it to
+  // exit status 2.
+  const sg::GridLimitError e("the extent is not finite: x nan to 1 m, y 0 to 1 m");
+  const sg::GridLimitError named = e.inFile("logs/run 1.sglog");
+  QCOMPARE(std::string(named.what()),
+           std::string("logs/run 1.sglog: the extent is not finite: x nan to 1 m, y 0 to 1 m"));
+  QCOMPARE(named.file(), std::string("logs/run 1.sglog"));
+  QCOMPARE(named.message(), e.message());
 }
 
 void TstGeometry::fittingGrid() {

@@ -165,21 +165,22 @@ void TstGrid::slackIsGeometric() {
 }
 
 void TstGrid::growthLimit() {
-  // 1 mm cells: a box 20 km by 2 cm needs 2·10⁷ x 20 = 4·10⁸ cells, twice kMaxGrowCells. The
+  // 1 mm cells: a box 20 km by 2 cm needs 2·10⁷ x 20 = 4·10⁸ cells, twice kMaxGridCells. The
   // grid stays as it was.
   Grid g(spec(0, 0, 10, 10, 0.001), CellLayout::of(Count{0}));
   const GridSpec before = g.spec();
   try {
     g.growToCover(Position(0, 0), Position(20000.0, 0.0195));
     QFAIL("a grid past the limit was grown");
-  } catch (const GridError& e) {
+  } catch (const GridLimitError& e) {
     QVERIFY2(
         std::string(e.what()).find("more than the limit of 200000000 cells") != std::string::npos,
         e.what());
   }
   QCOMPARE(g.spec(), before);
-  QVERIFY_THROWS_EXCEPTION(GridError, g.growToCover(Position(0, 0), Position(std::nan(""), 0)));
-  QVERIFY_THROWS_EXCEPTION(GridError,
+  QVERIFY_THROWS_EXCEPTION(GridLimitError,
+                           g.growToCover(Position(0, 0), Position(std::nan(""), 0)));
+  QVERIFY_THROWS_EXCEPTION(GridLimitError,
                            g.growToCover(Position(0, 0), Position(1e300, 0)));  // no overflow
   QCOMPARE(g.spec(), before);
 }

@@ -1,6 +1,6 @@
 // Loading a large log in the main window offscreen: the load runs on a worker thread and reports
-// progress; cancelling it, replacing it with another file or a malformed file leaves the previous
-// document and its map as they were (nothing half-loaded is shown).
+// progress; cancelling it, replacing it with another file, a malformed file or a log no grid can
+// hold leaves the previous document and its map as they were (nothing half-loaded is shown).
 
 #include <QPushButton>
 #include <QSignalSpy>
@@ -203,6 +203,35 @@ class TestMainWindowLoad : public QObject {
     QCOMPARE(window.dataset(), data);
     QCOMPARE(window.logPath(), kRoom);
     QCOMPARE(window.gridView()->map(), map);
+    QCOMPARE(window.remapController()->dataset(), data);
+  }
+
+  void logNoGridCanHoldKeepsThePreviousDocument() {
+    // One pose 1e12 m from the others (tests/data/sglog/far_pose.sglog): the core refuses the
+    // grid (sg::kMaxGridCells), and the window shows that error instead of a blank map.
+    const QString far = QStringLiteral(SONARGRID_TEST_DATA "/sglog/far_pose.sglog");
+    app::MainWindow window;
+    window.show();
+    QVERIFY(openRoom(window));
+    const auto data = window.dataset();
+    const auto map = window.gridView()->map();
+    const QString title = window.windowTitle();
+    QSignalSpy failed(&window, &app::MainWindow::loadFailed);
+    QSignalSpy loaded(&window, &app::MainWindow::loaded);
+    window.loadLog(far, LogOptions{});
+    QVERIFY(!window.waitForLoad(30000));
+    QCOMPARE(failed.count(), 1);
+    QCOMPARE(failed[0][0].toString(), far);
+    // The file, the scan (index 2, t = 1 s, at x = 1e12) and the limit.
+    const QString message = failed[0][1].toString();
+    QVERIFY2(message.startsWith(far + ": scan 2 (t = 1 s) reaches (1e+12, 0) m: "),
+             qPrintable(message));
+    QVERIFY2(message.endsWith("more than the grid limit of 200000000 cells"), qPrintable(message));
+    QCOMPARE(loaded.count(), 0);
+    QCOMPARE(window.dataset(), data);
+    QCOMPARE(window.logPath(), kRoom);
+    QCOMPARE(window.gridView()->map(), map);
+    QCOMPARE(window.windowTitle(), title);
     QCOMPARE(window.remapController()->dataset(), data);
   }
 };

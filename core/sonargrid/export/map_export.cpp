@@ -1,22 +1,19 @@
 #include "sonargrid/export/map_export.h"
 
 #include <algorithm>
-#include <atomic>
-#include <cerrno>
 #include <charconv>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string_view>
-#include <system_error>
+#include <vector>
+
+#include "sonargrid/base/atomic_file.h"
 
 namespace sg {
 namespace {
@@ -40,42 +37,6 @@ void requireLayerSize(const GridSpec& spec, const Layer& layer, const char* laye
     throw std::invalid_argument(std::string(what) + ": layer '" + layerName + "' has " +
                                 std::to_string(layer.size()) + " entries, the grid has " +
                                 std::to_string(spec.cellCount()) + " cells");
-}
-
-// A name next to `path` (same directory, so that rename() is atomic) that no other writer in this
-// or another process picks: the clock separates processes, the counter threads.
-std::string temporarySibling(const std::string& path, std::string_view extension) {
-  static std::atomic<unsigned long long> counter{0};
-  static const auto salt =
-      static_cast<unsigned long long>(std::chrono::steady_clock::now().time_since_epoch().count());
-  return path + ".tmp-" + std::to_string(salt) + "-" + std::to_string(counter++) +
-         std::string(extension);
-}
-
-void removeQuietly(const std::string& path) {
-  std::error_code ignored;
-  fs::remove(path, ignored);
-}
-
-// Replaces `path` by `temp`; readers see the old file or the new one, never a partial one.
-void commitTemporary(const std::string& temp, const std::string& path) {
-  std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) {
-    removeQuietly(temp);
-    throw std::runtime_error("cannot write '" + path + "': " + ec.message());
-  }
-}
-
-// Why opening a file in `path` failed, as far as the file system tells: a missing directory is
-// the common case and the system's message for it ("No such file or directory") reads as if the
-// file itself were meant.
-std::string missingDirectoryReason(const std::string& path) {
-  const fs::path parent = fs::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty() && !fs::is_directory(parent, ec))
-    return "directory '" + parent.string() + "' does not exist";
-  return {};
 }
 
 // ---- PNG
@@ -300,28 +261,6 @@ std::string yamlText(const OccupancyMap& map, const std::string& imageName) {
   return out;
 }
 
-void writeFileAtomically(const std::string& path, const std::string& bytes) {
-  const std::string temp = temporarySibling(path, "");
-  errno = 0;
-  std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-  if (!out) {
-    const int err = errno;
-    std::string reason = missingDirectoryReason(path);
-    if (reason.empty()) reason = err != 0 ? std::strerror(err) : "cannot create the file";
-    throw std::runtime_error("cannot write '" + path + "': " + reason);
-  }
-  errno = 0;  // a failure reports its own cause, not an older one
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  out.close();
-  if (!out) {
-    const int err = errno;
-    removeQuietly(temp);
-    throw std::runtime_error("cannot write '" + path +
-                             "': " + (err != 0 ? std::strerror(err) : "write failed"));
-  }
-  commitTemporary(temp, path);
-}
-
 }  // namespace
 
 RgbImage renderMapImage(const OccupancyMap& map, const PngOptions& options) {
@@ -341,29 +280,23 @@ RgbImage renderMapImage(const OccupancyMap& map, const PngOptions& options) {
 void writeMapPng(const OccupancyMap& map, const std::string& path, const PngOptions& options) {
   const cv::Mat image = renderBgr(map, options);
 
-  // cv::imwrite neither says why it failed nor avoids printing to stderr, so catch the common
-  // cause first.
-  if (std::string reason = missingDirectoryReason(path); !reason.empty())
-    throw std::runtime_error("cannot write PNG '" + path + "': " + reason);
-
-  // The temporary name ends in .png so that imwrite picks the PNG encoder (lossless) whatever
-  // `path` ends in; the rename makes the write atomic.
-  const std::string temp = temporarySibling(path, ".png");
-  bool written = false;
-  std::string reason = "cv::imwrite failed";
-  errno = 0;
+  // Encoded in memory and written by the one atomic writer: cv::imwrite would pick the encoder from
+  // the name's extension, says nothing about why it failed, and neither syncs nor renames.
+  std::vector<uchar> png;
+  bool encoded = false;
+  std::string reason = "cv::imencode failed";
   try {
-    written = cv::imwrite(temp, image);
+    encoded = cv::imencode(".png", image, png);
   } catch (const cv::Exception& e) {
     reason = e.what();
   }
-  if (!written) {
-    const int err = errno;
-    removeQuietly(temp);
-    if (err != 0) reason += std::string(" (") + std::strerror(err) + ")";
-    throw std::runtime_error("cannot write PNG '" + path + "': " + reason);
+  if (!encoded) throw FileWriteError(path, reason, "PNG");
+  try {
+    writeFileAtomically(path,
+                        std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+  } catch (const FileWriteError& e) {
+    throw FileWriteError(e.path(), e.reason(), "PNG");
   }
-  commitTemporary(temp, path);
 }
 
 void writeRosMap(const OccupancyMap& map, const std::string& basename) {

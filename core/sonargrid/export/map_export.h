@@ -36,13 +36,15 @@ struct RgbImage {
 };
 RgbImage renderMapImage(const OccupancyMap& map, const PngOptions& options = {});
 
-// Throws std::runtime_error naming the path when the file cannot be written, and
-// std::invalid_argument for scale < 1, an empty grid, a level layer of the wrong size or a level
-// above 15.
+// Encoded in memory (lossless PNG whatever the name's extension) and written atomically
+// (base/atomic_file.h). Throws FileWriteError ("cannot write PNG 'PATH': REASON") when the file
+// cannot be written, and std::invalid_argument for scale < 1, an empty grid, a level layer of the
+// wrong size or a level above 15.
 void writeMapPng(const OccupancyMap& map, const std::string& path, const PngOptions& options = {});
 
 // Writes BASENAME.yaml and BASENAME.pgm (map_server convention, negate 0: pixel = 255 (1 - p),
-// never-observed cells 205). Throws std::runtime_error naming the path on failure, and
+// never-observed cells 205), each written atomically, the image first. Throws FileWriteError naming
+// the file on failure, and
 // std::invalid_argument for an empty grid, layers of the wrong size or a non-finite probability.
 void writeRosMap(const OccupancyMap& map, const std::string& basename);
 

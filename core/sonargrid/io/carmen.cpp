@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "sonargrid/base/atomic_file.h"
 #include "sonargrid/io/text_lines.h"
-#include "sonargrid/reference/file_text.h"
 
 namespace sg {
 namespace {
@@ -355,7 +355,7 @@ void writeCarmen(const Dataset& dataset, const std::string& path) {
   } catch (const std::runtime_error& e) {
     throw std::runtime_error("cannot write '" + path + "': " + e.what());
   }
-  reference_io::writeFileAtomically(path, text);
+  writeFileAtomically(path, text);
 }
 
 }  // namespace sg

@@ -23,8 +23,8 @@ Dataset readCarmen(text::ByteSource& source, const std::string& displayName,
 
 // One TRUEPOS (when the scan has a true pose), one ODOM and one SONAR line per scan. A sonar
 // without a reading in a scan is written at the ring's maximum range (no echo); a sonar read twice
-// in one scan starts a second SONAR line. Reading times become the scan's time. Throws
-// std::runtime_error naming the path when it cannot write.
+// in one scan starts a second SONAR line. Reading times become the scan's time. The file is written
+// atomically (base/atomic_file.h); throws std::runtime_error naming the path when it cannot.
 void writeCarmen(const Dataset& dataset, const std::string& path);
 void writeCarmen(const Dataset& dataset, std::ostream& out);
 

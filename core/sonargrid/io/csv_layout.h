@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sonargrid/reference/reference_map.h"  // LengthUnit
+#include "sonargrid/base/length_unit.h"
 
 namespace sg {
 

@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "sonargrid/base/log_error.h"
 #include "sonargrid/io/csv_layout.h"
-#include "sonargrid/io/log_error.h"
 #include "sonargrid/sonar_ring.h"
 
 namespace sg {

@@ -2,24 +2,19 @@
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <filesystem>
 #include <istream>
 #include <limits>
 #include <numbers>
 #include <optional>
 #include <ostream>
-#include <random>
 #include <stdexcept>
 #include <string_view>
-#include <system_error>
 #include <utility>
 #include <vector>
 
+#include "sonargrid/base/atomic_file.h"
 #include "sonargrid/io/text_lines.h"
 
 namespace sg {
@@ -49,10 +44,6 @@ constexpr std::string_view kReading = "r";
 // The closing record: a log cut short exactly at a line ending would otherwise read as a valid,
 // shorter log.
 constexpr std::string_view kEnd = "end";
-
-std::string osReason(int err) {
-  return std::error_code(err, std::generic_category()).message();
-}
 
 // ---------------------------------------------------------------------------------------------
 // Shared validity rules: the writer refuses exactly what the reader would reject, so that a file
@@ -524,7 +515,7 @@ void checkWritable(const Dataset& d) {
   }
 }
 
-// Where formatted text goes: an ostream or a C file (for errno on failure).
+// Where formatted text goes: an ostream, or the temporary file of an atomic write.
 class ByteSink {
  public:
   virtual ~ByteSink() = default;
@@ -543,15 +534,13 @@ class StreamSink : public ByteSink {
   std::ostream& out_;
 };
 
-class FileSink : public ByteSink {
+class AtomicFileSink : public ByteSink {
  public:
-  explicit FileSink(std::FILE* f) : f_(f) {}
-  void write(const char* data, std::size_t n) override {
-    if (std::fwrite(data, 1, n, f_) != n) throw std::runtime_error(osReason(errno));
-  }
+  explicit AtomicFileSink(FileSink& file) : file_(file) {}
+  void write(const char* data, std::size_t n) override { file_.write(std::string_view(data, n)); }
 
  private:
-  std::FILE* f_;
+  FileSink& file_;
 };
 
 // Formats into a buffer and hands it to the sink in large blocks.
@@ -678,15 +667,6 @@ void writeText(const Dataset& d, ByteSink& sink) {
   w.flush();
 }
 
-// A fresh name next to `path`, so that the final rename stays within one file system.
-std::string temporaryNameFor(const std::string& path) {
-  thread_local std::mt19937_64 random{std::random_device{}()};
-  std::string name = path + ".";
-  std::uint64_t bits = random();
-  for (int i = 0; i < 16; ++i, bits >>= 4U) name += hexDigit(static_cast<unsigned>(bits));
-  return name + ".tmp";
-}
-
 }  // namespace
 
 Dataset readSglog(text::ByteSource& source, const std::string& displayName,
@@ -724,44 +704,18 @@ void writeSglog(const Dataset& dataset, std::ostream& out) {
 }
 
 void writeSglog(const Dataset& dataset, const std::string& path) {
-  auto fail = [&path](const std::string& why) -> void {
-    throw std::runtime_error("cannot write '" + path + "': " + why);
-  };
   try {
     checkWritable(dataset);
   } catch (const std::runtime_error& e) {
-    fail(e.what());
+    throw std::runtime_error("cannot write '" + path + "': " + e.what());
   }
 
-  std::string tmp;
-  std::FILE* f = nullptr;
-  // "x" (exclusive create) guards against another writer that drew the same temporary name.
-  for (int attempt = 0; attempt < 8 && f == nullptr; ++attempt) {
-    tmp = temporaryNameFor(path);
-    f = std::fopen(tmp.c_str(), "wbx");
-    if (f == nullptr && errno != EEXIST) break;
-  }
-  if (f == nullptr) fail("cannot create the temporary file '" + tmp + "': " + osReason(errno));
-
-  std::string problem;
-  try {
-    FileSink sink(f);
+  // The text goes straight into the temporary file in 64 KiB blocks: a long log is never held
+  // whole in memory.
+  writeFileAtomically(path, [&dataset](FileSink& file) {
+    AtomicFileSink sink(file);
     writeText(dataset, sink);
-    if (std::fflush(f) != 0) problem = osReason(errno);
-  } catch (const std::exception& e) {
-    // Anything, out-of-memory included, must still close and remove the temporary file.
-    problem = e.what();
-  }
-  if (std::fclose(f) != 0 && problem.empty()) problem = osReason(errno);
-  std::error_code ec;
-  if (problem.empty()) {
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) problem = "cannot rename '" + tmp + "' to it: " + ec.message();
-  }
-  if (!problem.empty()) {
-    std::filesystem::remove(tmp, ec);
-    fail(problem);
-  }
+  });
 }
 
 }  // namespace sg

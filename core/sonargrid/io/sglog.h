@@ -6,8 +6,8 @@
 #include <iosfwd>
 #include <string>
 
+#include "sonargrid/base/log_error.h"
 #include "sonargrid/dataset.h"
-#include "sonargrid/io/log_error.h"
 #include "sonargrid/io/log_options.h"
 
 namespace sg {
@@ -25,8 +25,9 @@ class ByteSource;
 Dataset readSglog(text::ByteSource& source, const std::string& displayName,
                   const LogOptions& options, LoadReport& report);
 
-// Writes atomically (a temporary file renamed over `path`); throws std::runtime_error naming the
-// path when it cannot.
+// Writes atomically (base/atomic_file.h: a unique temporary file, synced and renamed over `path`);
+// throws std::runtime_error naming the path when it cannot (FileWriteError for a file system
+// failure).
 void writeSglog(const Dataset& dataset, const std::string& path);
 void writeSglog(const Dataset& dataset, std::ostream& out);
 

@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sonargrid/io/log_error.h"
+#include "sonargrid/base/log_error.h"
 #include "sonargrid/io/log_options.h"
 
 namespace sg::text {

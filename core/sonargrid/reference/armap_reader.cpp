@@ -4,7 +4,7 @@
 #include <charconv>
 #include <cstdint>
 
-#include "sonargrid/reference/file_text.h"
+#include "sonargrid/base/file_text.h"
 
 namespace sg {
 namespace {
@@ -59,10 +59,10 @@ bool looksLikeKeyword(std::string_view line) {
 }  // namespace
 
 ReferenceMap parseArMap(std::string_view text, const std::string& displayName) {
-  using reference_io::shown;
+  using file_text::shown;
   // A UTF-8 byte-order mark is not part of the magic word.
   if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
-  const std::vector<std::string_view> lines = reference_io::splitLines(text);
+  const std::vector<std::string_view> lines = file_text::splitLines(text);
   if (lines.empty())
     throw LogError(displayName, 0, "", "the file is empty; expected an ArMap (first line 2D-Map)");
   const std::string_view magic = trim(lines.front());
@@ -132,7 +132,7 @@ ReferenceMap parseArMap(std::string_view text, const std::string& displayName) {
 }
 
 ReferenceMap readArMap(const std::string& path) {
-  const std::string bytes = reference_io::readFileBytes(path);
+  const std::string bytes = file_text::readFileBytes(path);
   return parseArMap(bytes, path);
 }
 

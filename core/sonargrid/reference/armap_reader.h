@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "sonargrid/io/log_error.h"
+#include "sonargrid/base/log_error.h"
 #include "sonargrid/reference/reference_map.h"
 
 namespace sg {

@@ -4,12 +4,12 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "sonargrid/reference/file_text.h"
+#include "sonargrid/base/file_text.h"
 
 namespace sg {
 namespace {
 
-using reference_io::shown;
+using file_text::shown;
 
 // Beyond this the "map" is a photograph or a unit mistake: 100 megapixels is a square
 // kilometre at 10 cm.
@@ -158,7 +158,7 @@ GreyImage parsePgm(std::string_view bytes, const std::string& displayName) {
 }
 
 GreyImage readGreyImage(const std::string& path) {
-  const std::string bytes = reference_io::readFileBytes(path, kMaxImageBytes);
+  const std::string bytes = file_text::readFileBytes(path, kMaxImageBytes);
   return looksLikePgm(bytes) ? parsePgm(bytes, path) : decodeWithOpenCv(bytes, path);
 }
 

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sonargrid/io/log_error.h"
+#include "sonargrid/base/log_error.h"
 
 namespace sg {
 

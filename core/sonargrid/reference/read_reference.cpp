@@ -4,8 +4,8 @@
 #include <cctype>
 #include <filesystem>
 
+#include "sonargrid/base/file_text.h"
 #include "sonargrid/reference/armap_reader.h"
-#include "sonargrid/reference/file_text.h"
 #include "sonargrid/reference/reference_json.h"
 #include "sonargrid/reference/ros_map_reader.h"
 
@@ -19,7 +19,7 @@ ReferenceMap readReference(const std::string& path) {
   if (ext == ".map") return readArMap(path);
   if (ext == ".json") return readReferenceJson(path);
 
-  const std::string bytes = reference_io::readFileBytes(path);
+  const std::string bytes = file_text::readFileBytes(path);
   const auto first = bytes.find_first_not_of(" \t\r\n");
   if (first != std::string::npos && bytes[first] == '{') return parseReferenceJson(bytes, path);
   if (bytes.rfind("2D-Map", 0) == 0 || bytes.rfind("\xEF\xBB\xBF"

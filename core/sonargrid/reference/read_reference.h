@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "sonargrid/io/log_error.h"
+#include "sonargrid/base/log_error.h"
 #include "sonargrid/reference/reference_map.h"
 
 namespace sg {

@@ -10,7 +10,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "sonargrid/reference/file_text.h"
+#include "sonargrid/base/atomic_file.h"
+#include "sonargrid/base/file_text.h"
 
 namespace sg {
 namespace {
@@ -92,7 +93,7 @@ class LineRecorder {
   bool key(json::string_t& k) {
     Frame& f = frames_.back();
     if (!f.keys.insert(k).second) {
-      error = "the key \"" + reference_io::shown(k) + "\" appears twice in one object";
+      error = "the key \"" + file_text::shown(k) + "\" appears twice in one object";
       errorLine = counter_.tokenLine;
       return false;
     }
@@ -238,7 +239,7 @@ class Validator {
       const auto [it, inserted] = seen.emplace(o.name, i);
       if (!inserted) {
         fail({"objects", std::to_string(i), "name"}, "objects[" + std::to_string(i) + "].name",
-             "the name \"" + reference_io::shown(o.name) + "\" is already used by objects[" +
+             "the name \"" + file_text::shown(o.name) + "\" is already used by objects[" +
                  std::to_string(it->second) + "]; names must be unique");
       }
       map.objects.push_back(std::move(o));
@@ -248,7 +249,7 @@ class Validator {
 
  private:
   static std::string shownJson(const json& v) {
-    return reference_io::shown(v.dump(-1, ' ', false, json::error_handler_t::replace), 40);
+    return file_text::shown(v.dump(-1, ' ', false, json::error_handler_t::replace), 40);
   }
 
   StartPose startPose(const json& v) const {
@@ -328,7 +329,7 @@ class Validator {
                         : out.circle ? "radius"
                                      : "corners";
       fail({"objects", index, key}, field + "." + key,
-           "object \"" + reference_io::shown(out.name) + "\": " + problem +
+           "object \"" + file_text::shown(out.name) + "\": " + problem +
                (out.circle || std::string(key) == "specular_limit_deg"
                     ? std::string()
                     : " (it has " + std::to_string(out.corners.size()) + ")"));
@@ -431,7 +432,7 @@ ReferenceMap parseReferenceJson(std::string_view text, const std::string& displa
 }
 
 ReferenceMap readReferenceJson(const std::string& path) {
-  const std::string bytes = reference_io::readFileBytes(path);
+  const std::string bytes = file_text::readFileBytes(path);
   return parseReferenceJson(bytes, path);
 }
 
@@ -495,7 +496,7 @@ std::string referenceJsonText(const ReferenceMap& map) {
 }
 
 void writeReferenceJson(const ReferenceMap& map, const std::string& path) {
-  reference_io::writeFileAtomically(path, referenceJsonText(map));
+  writeFileAtomically(path, referenceJsonText(map));
 }
 
 }  // namespace sg

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "sonargrid/io/log_error.h"
+#include "sonargrid/base/log_error.h"
 #include "sonargrid/reference/reference_map.h"
 
 namespace sg {
@@ -27,8 +27,8 @@ ReferenceMap parseReferenceJson(std::string_view text, const std::string& displa
 // integers without a fraction), one object per line. Throws std::invalid_argument for a map the
 // format cannot hold: an obstacle raster, an invalid object or a repeated name.
 std::string referenceJsonText(const ReferenceMap& map);
-// Atomic; throws std::runtime_error naming the path when it cannot write, std::invalid_argument as
-// referenceJsonText.
+// Atomic (base/atomic_file.h); throws FileWriteError naming the path when it cannot write,
+// std::invalid_argument as referenceJsonText.
 void writeReferenceJson(const ReferenceMap& map, const std::string& path);
 
 }  // namespace sg

@@ -13,16 +13,10 @@
 #include <string>
 #include <vector>
 
+#include "sonargrid/base/length_unit.h"
 #include "sonargrid/grid_spec.h"
 
 namespace sg {
-
-enum class LengthUnit { Metre, Centimetre, Millimetre };
-
-// "m", "cm", "mm": the spelling of the JSON `units` key.
-const char* lengthUnitName(LengthUnit unit);
-std::optional<LengthUnit> lengthUnitFromName(const std::string& name);
-double metresPerUnit(LengthUnit unit);
 
 // How an object's surface returns sound (docs/simulator.md). Scoring ignores it; the simulator
 // reads it. Unspecified takes the simulator's default (specular, at its default limit).

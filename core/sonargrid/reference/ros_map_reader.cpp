@@ -6,13 +6,13 @@
 #include <map>
 #include <optional>
 
-#include "sonargrid/reference/file_text.h"
+#include "sonargrid/base/file_text.h"
 #include "sonargrid/reference/grey_image.h"
 
 namespace sg {
 namespace {
 
-using reference_io::shown;
+using file_text::shown;
 
 // map_saver's value for a cell nobody observed (and what writeRosMap writes).
 constexpr int kUnknownPixel = 205;
@@ -77,7 +77,7 @@ class YamlReader {
  private:
   void parse(std::string_view text) {
     if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
-    const std::vector<std::string_view> lines = reference_io::splitLines(text);
+    const std::vector<std::string_view> lines = file_text::splitLines(text);
     bool skippingBlock = false;  // indented lines under a key we do not read
     for (std::size_t n = 0; n < lines.size(); ++n) {
       const std::size_t lineNo = n + 1;
@@ -213,7 +213,7 @@ bool RosMap::unknownPixel(std::size_t cell) const {
 
 RosMap readRosMap(const std::string& yamlPath) {
   namespace fs = std::filesystem;
-  const std::string text = reference_io::readFileBytes(yamlPath, 1024 * 1024);
+  const std::string text = file_text::readFileBytes(yamlPath, 1024 * 1024);
   const YamlReader yaml(text, yamlPath);
 
   RosMap map;

@@ -16,7 +16,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sonargrid/io/log_error.h"
+#include "sonargrid/base/log_error.h"
 #include "sonargrid/occupancy_map.h"
 #include "sonargrid/reference/reference_map.h"
 

@@ -6,8 +6,8 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "sonargrid/io/log_error.h"
-#include "sonargrid/reference/file_text.h"
+#include "sonargrid/base/file_text.h"
+#include "sonargrid/base/log_error.h"
 
 namespace sg {
 namespace {
@@ -129,7 +129,7 @@ std::vector<Position> parseRouteText(std::string_view text, const std::string& d
       const auto [ptr, ec] = std::from_chars(field.data(), field.data() + field.size(), v);
       if (ec != std::errc() || ptr != field.data() + field.size() || !std::isfinite(v)) {
         throw LogError(displayName, lineNo, "waypoint",
-                       "expected a number, got '" + reference_io::shown(field) + "'");
+                       "expected a number, got '" + file_text::shown(field) + "'");
       }
       numbers.push_back(v);
       i = j;
@@ -146,7 +146,7 @@ std::vector<Position> parseRouteText(std::string_view text, const std::string& d
 }
 
 std::vector<Position> readRouteFile(const std::string& path) {
-  return parseRouteText(reference_io::readFileBytes(path), path);
+  return parseRouteText(file_text::readFileBytes(path), path);
 }
 
 std::optional<Clearance> closestApproach(const SonarWorld& world, const Trajectory& path,

@@ -1,4 +1,4 @@
-#include "sonargrid/reference/file_text.h"
+#include "sonargrid/base/file_text.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "sonargrid/io/log_error.h"
+#include "sonargrid/base/log_error.h"
 
-namespace sg::reference_io {
+namespace sg::file_text {
 namespace {
 
 std::string osReason(int err) {
@@ -45,41 +45,6 @@ std::string readFileBytes(const std::string& path, std::size_t maxBytes) {
   return bytes;
 }
 
-void writeFileAtomically(const std::string& path, const std::string& bytes) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path temp = target.parent_path() / ("." + target.filename().string() + ".tmp");
-  {
-    errno = 0;
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      const int err = errno;
-      std::error_code ec;
-      const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-      if (!fs::is_directory(dir, ec)) {
-        throw std::runtime_error("cannot write '" + path + "': the directory '" + dir.string() +
-                                 "' does not exist");
-      }
-      throw std::runtime_error("cannot write '" + path +
-                               "': " + (err != 0 ? osReason(err) : "cannot create the file"));
-    }
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) {
-      std::error_code ignored;
-      fs::remove(temp, ignored);
-      throw std::runtime_error("cannot write '" + path + "': write failed");
-    }
-  }
-  std::error_code ec;
-  fs::rename(temp, target, ec);
-  if (ec) {
-    std::error_code ignored;
-    fs::remove(temp, ignored);
-    throw std::runtime_error("cannot write '" + path + "': " + ec.message());
-  }
-}
-
 std::vector<std::string_view> splitLines(std::string_view text) {
   std::vector<std::string_view> lines;
   std::size_t start = 0;
@@ -112,4 +77,4 @@ std::string shown(std::string_view s, std::size_t max) {
   return out;
 }
 
-}  // namespace sg::reference_io
+}  // namespace sg::file_text

@@ -1,4 +1,4 @@
-#include "sonargrid/io/log_error.h"
+#include "sonargrid/base/log_error.h"
 
 #include <utility>
 

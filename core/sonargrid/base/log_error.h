@@ -1,7 +1,7 @@
 #pragma once
 // The one error type of every log and map reader: it names the file, the line and the field, and
-// says what was expected (notes/formats-and-protocols.md: "reject bad input with a clear error
-// naming the file, line and field").
+// says what was expected (docs/formats.md, "Errors"). It lives below io/ and reference/ because
+// both kinds of reader throw it.
 
 #include <cstddef>
 #include <stdexcept>

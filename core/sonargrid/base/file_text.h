@@ -1,5 +1,6 @@
 #pragma once
-// Whole-file reading and atomic writing for the reference readers and writer. Reference files are
+// Whole-file reading and line splitting for the readers of small files (reference maps, routes,
+// ROS map YAML and images), and the quoting of offending text in their errors. Such files are
 // small; the size cap keeps a wrong or hostile path (a device, a multi-gigabyte log) from being
 // read whole before we can say anything about it.
 
@@ -8,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-namespace sg::reference_io {
+namespace sg::file_text {
 
 inline constexpr std::size_t kMaxReferenceBytes = 64u * 1024u * 1024u;
 
@@ -16,14 +17,10 @@ inline constexpr std::size_t kMaxReferenceBytes = 64u * 1024u * 1024u;
 // regular file, or is larger than `maxBytes`.
 std::string readFileBytes(const std::string& path, std::size_t maxBytes = kMaxReferenceBytes);
 
-// Writes through a temporary sibling renamed over `path`; throws std::runtime_error naming the
-// path when it cannot.
-void writeFileAtomically(const std::string& path, const std::string& bytes);
-
 // The text split into lines (without their "\n" or "\r\n"), numbered from 1 by position.
 std::vector<std::string_view> splitLines(std::string_view text);
 
 // At most `max` bytes of `s` for an error message, with "..." when cut, control bytes escaped.
 std::string shown(std::string_view s, std::size_t max = 40);
 
-}  // namespace sg::reference_io
+}  // namespace sg::file_text
