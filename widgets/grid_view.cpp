@@ -122,10 +122,21 @@ bool sameGround(const GridSpec& a, const GridSpec& b) {
          std::abs(a.width * a.cellSize - b.width * b.cellSize) <= slack &&
          std::abs(a.height * a.cellSize - b.height * b.cellSize) <= slack;
 }
+// Whether `b` is `a` grown, as a live map grows (Mapper::append): the same cells, more of them.
+bool grownFrom(const GridSpec& a, const GridSpec& b) {
+  const double tiny = 1e-6 * a.cellSize;  // origins moved by whole cells, printed as decimals
+  return a.cellSize == b.cellSize && b.origin.x() <= a.origin.x() + tiny &&
+         b.origin.y() <= a.origin.y() + tiny &&
+         b.origin.x() + b.widthMetres() >= a.origin.x() + a.widthMetres() - tiny &&
+         b.origin.y() + b.heightMetres() >= a.origin.y() + a.heightMetres() - tiny;
+}
 }  // namespace
 
 void GridView::setMap(std::shared_ptr<const OccupancyMap> map) {
-  const bool sameGrid = scene_.map && map && sameGround(scene_.map->spec, map->spec);
+  // A grown live map keeps a view the user has moved; one still fitted is fitted again.
+  const bool sameGrid = scene_.map && map &&
+                        (sameGround(scene_.map->spec, map->spec) ||
+                         (!followFit_ && grownFrom(scene_.map->spec, map->spec)));
   scene_.map = std::move(map);
   if (!sameGrid && scene_.map) {
     followFit_ = true;

@@ -29,8 +29,8 @@ class GridView : public QWidget {
   static Backend automaticBackend();
   Backend backend() const { return backend_; }
 
-  // A new snapshot. The view keeps its pan and zoom while the grid's geometry stays the same, and
-  // fits the new grid otherwise.
+  // A new snapshot. The view keeps its pan and zoom while the grid's geometry stays the same, or
+  // when a live map's grid grew and the user has moved the view, and fits the new grid otherwise.
   void setMap(std::shared_ptr<const OccupancyMap> map);
   std::shared_ptr<const OccupancyMap> map() const { return scene_.map; }
   void setReferenceLines(std::vector<std::vector<Position>> lines);

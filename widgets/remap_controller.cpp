@@ -4,21 +4,46 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
+#include <optional>
 
 namespace sg::ui {
 
 // The mapper of the last complete run, kept for continuing it forward in time. When the log's
 // readings are in time order, a batch run to `until` has applied exactly the readings of the log
 // up to `until`, a prefix of the log; a batch run to a later time applies that prefix and then the
-// readings in (until, later], in log order, which is what continuing the mapper does.
+// readings in (until, later], in log order, which is what continuing the mapper does. A live log
+// adds scans after the first `scans`: their readings up to the new time follow in the same order.
 struct RemapController::WarmMapper {
   std::shared_ptr<const Dataset> data;
+  std::shared_ptr<const ScanSource> source;
   bool ordered = false;  // the readings' times never decrease along the log
   std::unique_ptr<Mapper> mapper;
   MapperSettings settings;
   double cellSize = 0.0;
   double until = 0.0;
-  std::size_t nextScan = 0;  // the first scan holding a reading after `until`
+  std::size_t nextScan = 0;        // the first scan holding a reading after `until`
+  std::size_t scans = 0;           // of a live log: the scans there were when it was last mapped
+  std::optional<GridSpec> ground;  // of a live log: the limits its map last had
+};
+
+// What one run maps, as it was when it was asked for.
+struct RemapController::Request {
+  std::shared_ptr<const Dataset> data;
+  std::shared_ptr<const ScanSource> source;
+  MapperSettings settings;
+  double cellSize = 0.05;
+  double until = 0.0;
+  std::shared_ptr<std::atomic<bool>> cancel;
+  quint64 generation = 0;
+  bool append = false;  // scansAppended(): clears appendWaiting_ when it starts
+};
+
+struct RemapController::Outcome {
+  std::shared_ptr<const OccupancyMap> map;
+  double ms = 0.0;
+  bool interrupted = false;
+  bool incremental = false;
+  QString error;
 };
 
 namespace {
@@ -43,11 +68,27 @@ std::unique_ptr<Mapper> mapperFor(const Dataset& data, const MapperSettings& set
   return std::make_unique<Mapper>(data.ring, data.fittingGrid(settings.pose, cellSize), settings);
 }
 
-std::size_t firstScanAfter(const Dataset& data, double until, std::size_t from) {
-  for (std::size_t i = from; i < data.scans.size(); ++i)
-    for (const Reading& r : data.scans[i].readings)
+template <class Scans>
+std::size_t firstScanAfter(const Scans& scans, std::size_t count, double until, std::size_t from) {
+  for (std::size_t i = from; i < count; ++i)
+    for (const Reading& r : scans[i].readings)
       if (r.time > until) return i;
-  return data.scans.size();
+  return count;
+}
+
+// Scan `scan` with only its readings in (after, until].
+Scan readingsBetween(const Scan& scan, double after, double until) {
+  Scan part;
+  part.time = scan.time;
+  part.odometry = scan.odometry;
+  part.truth = scan.truth;
+  for (const Reading& r : scan.readings)
+    if (r.time > after && r.time <= until) part.readings.push_back(r);
+  return part;
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace
@@ -64,6 +105,7 @@ RemapController::~RemapController() {
 
 void RemapController::setDataset(std::shared_ptr<const Dataset> data, double cellSize) {
   data_ = std::move(data);
+  source_.reset();
   cellSize_ = cellSize;
   remap();
 }
@@ -71,6 +113,18 @@ void RemapController::setDataset(std::shared_ptr<const Dataset> data, double cel
 void RemapController::start(std::shared_ptr<const Dataset> data, double cellSize,
                             const MapperSettings& settings, double until) {
   data_ = std::move(data);
+  source_.reset();
+  cellSize_ = cellSize;
+  settings_ = settings;
+  haveSettings_ = true;
+  until_ = until;
+  remap();
+}
+
+void RemapController::startLive(std::shared_ptr<const ScanSource> source, double cellSize,
+                                const MapperSettings& settings, double until) {
+  source_ = std::move(source);
+  data_.reset();
   cellSize_ = cellSize;
   settings_ = settings;
   haveSettings_ = true;
@@ -100,8 +154,7 @@ void RemapController::startPreview(quint64 generation,
       const auto mapper = mapperFor(*data, settings, cellSize);
       if (mapper->mapDataset(*data, until, cancel.get())) {
         map = std::make_shared<const OccupancyMap>(mapper->snapshot());
-        ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                 .count();
+        ms = msSince(t0);
       }
     } catch (const std::exception&) {
       // The full run reports the error.
@@ -126,91 +179,174 @@ void RemapController::remap() {
 }
 
 void RemapController::run(bool preview) {
-  if (!data_ || !haveSettings_) return;
+  if ((!data_ && !source_) || !haveSettings_) return;
   if (cancelRunning_) cancelRunning_->store(true);
   auto cancel = std::make_shared<std::atomic<bool>>(false);
   cancelRunning_ = cancel;
   const quint64 generation = ++generation_;
-  if (running_++ == 0) emit busyChanged(true);
-  if (preview) startPreview(generation, cancel);  // queued first, so it runs first
+  lastRemapGeneration_ = generation;
+  // Previews are of loaded logs: a live map is continued, which is already quick.
+  if (preview && data_) startPreview(generation, cancel);  // queued first, so it runs first
+  enqueue(Request{data_, source_, settings_, cellSize_, until_, cancel, generation, false});
+}
 
-  pool_.start([this, data = data_, settings = settings_, cellSize = cellSize_, until = until_,
-               cancel, generation, warm = warm_] {
-    std::shared_ptr<const OccupancyMap> map;
-    double ms = 0.0;
-    bool interrupted = false;
-    bool incremental = false;
-    QString error;
-    try {
-      if (settings.pose == PoseSource::Truth && !data->hasTruth())
-        throw MapperError("the log has no true pose for every scan; map with odometry");
-      const auto t0 = std::chrono::steady_clock::now();
-      if (warm->data != data) {
+void RemapController::scansAppended() {
+  if (!source_ || !haveSettings_) return;
+  // A queued append run takes the source's scans when it starts: these are among them.
+  if (appendWaiting_.exchange(true)) return;
+  // The running run's cancel flag: a re-map asked for later stops this run too.
+  if (!cancelRunning_) cancelRunning_ = std::make_shared<std::atomic<bool>>(false);
+  enqueue(
+      Request{nullptr, source_, settings_, cellSize_, until_, cancelRunning_, ++generation_, true});
+}
+
+void RemapController::enqueue(Request request) {
+  if (running_++ == 0) emit busyChanged(true);
+  pool_.start([this, request = std::move(request), warm = warm_] {
+    if (request.append) appendWaiting_.store(false);
+    Outcome outcome;
+    if (request.cancel->load()) {
+      outcome.interrupted = true;  // superseded before it started: the warm mapper is unchanged
+    } else {
+      try {
+        outcome = request.source ? mapLive(*warm, request) : mapLoaded(*warm, request);
+      } catch (const std::exception& e) {
         warm->mapper.reset();
-        warm->data = data;
-        warm->ordered = readingsInTimeOrder(*data);
+        outcome = Outcome{};
+        outcome.error = QString::fromStdString(e.what());
       }
-      incremental = warm->mapper && warm->ordered && warm->cellSize == cellSize &&
-                    sameSettings(warm->settings, settings) && until >= warm->until;
-      if (incremental) {
-        Scan part;
-        for (std::size_t i = warm->nextScan; i < data->scans.size() && !interrupted; ++i) {
-          const Scan& scan = data->scans[i];
-          if (!scan.readings.empty() && scan.readings.front().time > until) break;
-          if (cancel->load(std::memory_order_relaxed)) {
-            interrupted = true;
-            break;
-          }
-          // Only the readings the mapper has not seen yet: those after the previous time.
-          part.time = scan.time;
-          part.odometry = scan.odometry;
-          part.truth = scan.truth;
-          part.readings.clear();
-          for (const Reading& r : scan.readings)
-            if (r.time > warm->until) part.readings.push_back(r);
-          warm->mapper->integrate(part, until);
-        }
-      } else {
-        warm->mapper.reset();
-        auto mapper = mapperFor(*data, settings, cellSize);
-        interrupted = !mapper->mapDataset(*data, until, cancel.get());
-        warm->mapper = std::move(mapper);
-      }
-      if (interrupted) {
-        warm->mapper.reset();
-      } else {
-        map = std::make_shared<const OccupancyMap>(warm->mapper->snapshot());
-        ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
-                 .count();
-        warm->nextScan = firstScanAfter(*data, until, incremental ? warm->nextScan : 0);
-        warm->settings = settings;
-        warm->cellSize = cellSize;
-        warm->until = until;
-      }
-    } catch (const std::exception& e) {
-      warm->mapper.reset();
-      error = QString::fromStdString(e.what());
     }
     QMetaObject::invokeMethod(
         this,
-        [this, generation, map = std::move(map), ms, interrupted, incremental, error] {
-          finish(generation, map, ms, interrupted, incremental, error);
+        [this, generation = request.generation, outcome = std::move(outcome)] {
+          finish(generation, outcome);
         },
         Qt::QueuedConnection);
   });
 }
 
-void RemapController::finish(quint64 generation, std::shared_ptr<const OccupancyMap> map, double ms,
-                             bool interrupted, bool incremental, const QString& error) {
-  if (--running_ == 0) emit busyChanged(false);
-  const bool stale = generation != generation_;
-  if (!error.isEmpty() && !stale) {
-    emit failed(error, generation);
-  } else if (stale || interrupted || !map) {
-    emit cancelled(generation, interrupted);
+RemapController::Outcome RemapController::mapLoaded(WarmMapper& warm, const Request& request) {
+  const Dataset& data = *request.data;
+  const MapperSettings& settings = request.settings;
+  const double until = request.until;
+  if (settings.pose == PoseSource::Truth && !data.hasTruth())
+    throw MapperError("the log has no true pose for every scan; map with odometry");
+  Outcome out;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (warm.data != request.data) {
+    warm.mapper.reset();
+    warm.source.reset();
+    warm.data = request.data;
+    warm.ordered = readingsInTimeOrder(data);
+  }
+  out.incremental = warm.mapper && warm.ordered && warm.cellSize == request.cellSize &&
+                    sameSettings(warm.settings, settings) && until >= warm.until;
+  if (out.incremental) {
+    for (std::size_t i = warm.nextScan; i < data.scans.size() && !out.interrupted; ++i) {
+      const Scan& scan = data.scans[i];
+      if (!scan.readings.empty() && scan.readings.front().time > until) break;
+      if (request.cancel->load(std::memory_order_relaxed)) {
+        out.interrupted = true;
+        break;
+      }
+      // Only the readings the mapper has not seen yet: those after the previous time.
+      warm.mapper->integrate(readingsBetween(scan, warm.until, until), until);
+    }
   } else {
-    if (!incremental) lastFullMs_ = ms;
-    emit mapped(std::move(map), ms, generation, incremental);
+    warm.mapper.reset();
+    auto mapper = mapperFor(data, settings, request.cellSize);
+    out.interrupted = !mapper->mapDataset(data, until, request.cancel.get());
+    warm.mapper = std::move(mapper);
+  }
+  if (out.interrupted) {
+    warm.mapper.reset();
+    return out;
+  }
+  // A continued map recomputes the rows its readings wrote; a new one is computed whole and
+  // handed over without a copy.
+  out.map = std::make_shared<const OccupancyMap>(out.incremental ? warm.mapper->liveMap()
+                                                                 : warm.mapper->snapshot());
+  out.ms = msSince(t0);
+  warm.nextScan =
+      firstScanAfter(data.scans, data.scans.size(), until, out.incremental ? warm.nextScan : 0);
+  warm.settings = settings;
+  warm.cellSize = request.cellSize;
+  warm.until = until;
+  return out;
+}
+
+RemapController::Outcome RemapController::mapLive(WarmMapper& warm, const Request& request) {
+  const ScanPrefix scans = request.source->prefix();
+  const MapperSettings& settings = request.settings;
+  const double until = request.until;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  Outcome out;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (warm.source != request.source) {
+    warm.mapper.reset();
+    warm.data.reset();
+    warm.ground.reset();
+    warm.source = request.source;
+  }
+  // Continuing adds the readings after the mapped ones: a prefix of the log in log order when the
+  // readings are in time order, or when every reading of the scans mapped so far was taken.
+  out.incremental = warm.mapper && warm.cellSize == request.cellSize &&
+                    sameSettings(warm.settings, settings) && until >= warm.until &&
+                    (scans.readingsInTimeOrder() || warm.until == kInf);
+  if (!out.incremental) {
+    // From the last limits when there are some for these cells (a live view keeps its ground),
+    // else one cell at the first pose; append() grows it.
+    GridSpec start;
+    if (warm.ground && warm.ground->cellSize == request.cellSize) {
+      start = *warm.ground;
+    } else {
+      const Position p = scans.empty() ? Position(0.0, 0.0) : scans[0].odometry.position;
+      start = GridSpec::covering(p, p, request.cellSize, 0.0);
+    }
+    warm.mapper.reset();
+    warm.mapper = std::make_unique<Mapper>(request.source->ring(), start, settings);
+    warm.until = -kInf;
+    warm.nextScan = 0;
+    warm.scans = 0;
+  }
+  Mapper& mapper = *warm.mapper;
+  const std::atomic<bool>* cancel = request.cancel.get();
+  // The mapped scans' readings in (warm.until, until], then the new scans' up to `until`.
+  std::vector<Scan> late;
+  for (std::size_t i = warm.nextScan; i < warm.scans; ++i)
+    late.push_back(readingsBetween(scans[i], warm.until, until));
+  bool completed = mapper.append(late, until, cancel);
+  for (const std::span<const Scan> part : scans.spans(warm.scans, scans.size())) {
+    if (!completed) break;
+    completed = mapper.append(part, until, cancel);
+  }
+  if (!completed) {
+    out.interrupted = true;
+    warm.mapper.reset();
+    return out;
+  }
+  out.map = std::make_shared<const OccupancyMap>(mapper.liveMap());
+  out.ms = msSince(t0);
+  warm.ground = mapper.grid();
+  warm.nextScan = firstScanAfter(scans, scans.size(), until, warm.nextScan);
+  warm.scans = scans.size();
+  warm.settings = settings;
+  warm.cellSize = request.cellSize;
+  warm.until = until;
+  return out;
+}
+
+void RemapController::finish(quint64 generation, const Outcome& outcome) {
+  if (--running_ == 0) emit busyChanged(false);
+  // Superseded by a newer re-map (appends supersede nothing: each continues the one before).
+  const bool stale = generation < lastRemapGeneration_;
+  if (!outcome.error.isEmpty() && !stale) {
+    emit failed(outcome.error, generation);
+  } else if (stale || outcome.interrupted || !outcome.map) {
+    emit cancelled(generation, outcome.interrupted);
+  } else {
+    if (!outcome.incremental) lastFullMs_ = outcome.ms;
+    emit mapped(outcome.map, outcome.ms, generation, outcome.incremental);
   }
 }
 

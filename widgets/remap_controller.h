@@ -8,7 +8,14 @@
 // Moving the time forward with unchanged settings continues the last map with the readings in
 // between instead of starting over (the timeline playing). For a log whose readings are in time
 // order that gives the same bits as a batch run to the new time (Mapper: batch and incremental
-// mapping are identical); other logs always start over.
+// mapping are identical); other logs always start over. A continued map's snapshot recomputes only
+// the rows the new readings wrote (Mapper::liveMap).
+//
+// A live log (startLive) is a ScanSource that a link appends to while it is mapped, on a grid
+// that grows with the robot (Mapper::append). scansAppended() folds the new scans into the warm
+// mapper and delivers the map, with no re-map; appends never cancel a run, and while one append
+// run waits its turn further appends join it. A change of settings (or of the cell size, or a move
+// of the time backwards) re-maps every scan received so far, from the grid's present limits.
 //
 // Optionally (setPreview), a change of settings whose last full re-map was slow is first mapped on
 // cells `factor` times larger, a fraction of the work, and delivered as previewed(); the full map
@@ -25,6 +32,7 @@
 #include "sonargrid/dataset.h"
 #include "sonargrid/mapper.h"
 #include "sonargrid/occupancy_map.h"
+#include "sonargrid/scan_source.h"
 
 namespace sg::ui {
 
@@ -41,7 +49,13 @@ class RemapController : public QObject {
   // Everything at once, one run: a newly opened log.
   void start(std::shared_ptr<const Dataset> data, double cellSize, const MapperSettings& settings,
              double until);
-  std::shared_ptr<const Dataset> dataset() const { return data_; }
+  // A live log: scans appended to `source` after this are mapped by scansAppended(). Maps what the
+  // source holds now, up to `until` (+infinity: every scan, following the live edge).
+  void startLive(std::shared_ptr<const ScanSource> source, double cellSize,
+                 const MapperSettings& settings,
+                 double until = std::numeric_limits<double>::infinity());
+  std::shared_ptr<const Dataset> dataset() const { return data_; }      // null for a live log
+  std::shared_ptr<const ScanSource> source() const { return source_; }  // null for a loaded log
   double cellSize() const { return cellSize_; }
   const MapperSettings& settings() const { return settings_; }
   double until() const { return until_; }
@@ -58,10 +72,13 @@ class RemapController : public QObject {
   void setSettings(const sg::MapperSettings& settings);
   void setUntil(double until);  // +infinity: the whole log
   void remap();
+  // The live source has new scans: fold them into the map and deliver it (mapped(), incremental).
+  void scansAppended();
 
  signals:
   // The newest run finished: its map, the mapping time in ms, its generation and whether it
-  // continued the previous map rather than starting over.
+  // continued the previous map rather than starting over. (A live log's append runs are all
+  // delivered, in order, unless a re-map was asked for after them.)
   void mapped(std::shared_ptr<const sg::OccupancyMap> map, double elapsedMs, quint64 generation,
               bool incremental);
   // A run was superseded; `interrupted` says it stopped before the end of the log.
@@ -72,19 +89,25 @@ class RemapController : public QObject {
   void busyChanged(bool busy);
 
  private:
-  struct Job;
   struct WarmMapper;
-  void finish(quint64 generation, std::shared_ptr<const OccupancyMap> map, double ms,
-              bool interrupted, bool incremental, const QString& error);
+  struct Request;
+  struct Outcome;
+  static Outcome mapLoaded(WarmMapper& warm, const Request& request);
+  static Outcome mapLive(WarmMapper& warm, const Request& request);
+  void finish(quint64 generation, const Outcome& outcome);
   void run(bool preview);
+  void enqueue(Request request);
   void startPreview(quint64 generation, const std::shared_ptr<std::atomic<bool>>& cancel);
 
   std::shared_ptr<const Dataset> data_;
+  std::shared_ptr<const ScanSource> source_;
   double cellSize_ = 0.05;
   MapperSettings settings_;
   bool haveSettings_ = false;
   double until_ = std::numeric_limits<double>::infinity();
   quint64 generation_ = 0;
+  quint64 lastRemapGeneration_ = 0;         // the newest request that was not an append
+  std::atomic<bool> appendWaiting_{false};  // an append run is queued and has not started
   std::shared_ptr<std::atomic<bool>> cancelRunning_;
   int running_ = 0;
   int previewFactor_ = 1;

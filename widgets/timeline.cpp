@@ -71,14 +71,30 @@ void Timeline::setScanTimes(std::vector<double> scanTimes, double endTime) {
   scanTimes_ = std::move(scanTimes);
   endTime_ = scanTimes_.empty() ? 0.0 : std::max(endTime, scanTimes_.back());
   time_ = endTime_;
-  {
-    const QSignalBlocker block(slider_);
-    slider_->setRange(0, static_cast<int>(std::ceil((endTime_ - startTime()) / kSliderStep)));
-    slider_->setValue(slider_->maximum());
-    slider_->setPageStep(std::max(1, slider_->maximum() / 20));
-  }
+  setRange();
   setEnabled(!scanTimes_.empty());
   showTime();
+}
+
+void Timeline::appendScanTimes(const std::vector<double>& scanTimes, double endTime) {
+  if (scanTimes.empty() && !(endTime > endTime_)) return;
+  const bool following = scanTimes_.empty() || atEnd();
+  scanTimes_.insert(scanTimes_.end(), scanTimes.begin(), scanTimes.end());
+  if (scanTimes_.empty()) return;
+  endTime_ = std::max({endTime_, endTime, scanTimes_.back()});
+  if (following) time_ = endTime_;
+  setRange();
+  setEnabled(true);
+  showTime();
+  if (following) emit timeChanged(time_, currentScan());
+}
+
+void Timeline::setRange() {
+  const QSignalBlocker block(slider_);
+  slider_->setRange(0, static_cast<int>(std::ceil((endTime_ - startTime()) / kSliderStep)));
+  slider_->setValue(atEnd() ? slider_->maximum()
+                            : static_cast<int>(std::lround((time_ - startTime()) / kSliderStep)));
+  slider_->setPageStep(std::max(1, slider_->maximum() / 20));
 }
 
 std::size_t Timeline::currentScan() const {

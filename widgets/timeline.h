@@ -23,6 +23,11 @@ class Timeline : public QWidget {
   // The time of every scan (ascending) and the time of the log's last reading. The timeline then
   // stands at the end.
   void setScanTimes(std::vector<double> scanTimes, double endTime);
+  // Scans appended to a live log: their times (ascending, after the last) and the time of the
+  // log's last reading now. The range grows; a user standing at the end follows the live edge (the
+  // time moves to the new end, and timeChanged() says so); anywhere else the time stays, and so
+  // does the slider's knob. The first scans of an empty timeline enable it, at the end.
+  void appendScanTimes(const std::vector<double>& scanTimes, double endTime);
   double time() const { return time_; }
   double startTime() const { return scanTimes_.empty() ? 0.0 : scanTimes_.front(); }
   double endTime() const { return endTime_; }
@@ -49,6 +54,7 @@ class Timeline : public QWidget {
  private:
   void advance();
   void showTime();
+  void setRange();  // the slider's range from the scan times, without moving the time
 
   std::vector<double> scanTimes_;
   double endTime_ = 0.0;

@@ -20,7 +20,7 @@ ParameterSet defaultParameters(const std::string& model, const std::string& rule
 }
 
 Mapper::Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings& settings)
-    : ring_(ring), grid_(grid), settings_(settings) {
+    : ring_(ring), settings_(settings) {
   model_ = makeSensorModel(settings.model);
   if (!model_) throw MapperError("unknown sensor model '" + settings.model + "'");
   rule_ = makeUpdateRule(settings.rule);
@@ -30,7 +30,7 @@ Mapper::Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings
     throw MapperError("model '" + settings.model + "' cannot be used with rule '" + settings.rule +
                       "': " + c.reason);
   }
-  if (grid_.width <= 0 || grid_.height <= 0 || !(grid_.cellSize > 0.0))
+  if (grid.width <= 0 || grid.height <= 0 || !(grid.cellSize > 0.0))
     throw MapperError("the grid is empty");
   // Parameters the caller did not give stay at their defaults.
   ParameterSet params = defaultParameters(settings.model, settings.rule);
@@ -40,13 +40,12 @@ Mapper::Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings
   settings_.parameters = params;
   model_->configure(params);
   rule_->configure(params);
-  tables_ = BeamTables::shared(grid_.cellSize, model_->reach(ring_.maxRange));
-  reset();
+  grid_ = Grid(grid, rule_->layout());  // unknown and unobserved
+  tables_ = BeamTables::shared(grid.cellSize, model_->reach(ring_.maxRange));
 }
 
 void Mapper::reset() {
-  rule_->reset(grid_.cellCount());
-  observed_.assign(grid_.cellCount(), 0);
+  grid_.clear();
   readings_ = 0;
   if (observer_) observer_->reset(grid_.cellCount());
 }
@@ -71,26 +70,12 @@ Beam Mapper::beamOf(const Pose2D& robot, const Reading& reading) const {
 
 Footprint Mapper::footprintOf(const Pose2D& robot, const Reading& reading) const {
   Footprint fp;
-  model_->footprint(beamOf(robot, reading), grid_, *tables_, fp);
+  model_->footprint(beamOf(robot, reading), grid_.spec(), *tables_, fp);
   return fp;
 }
 
-void Mapper::markObserved(const Footprint& footprint) {
-  // Four at a time: the loop is a load and a store per cell, and its own overhead was a third.
-  const CellEvidence* c = footprint.cells.data();
-  const CellEvidence* const end = c + footprint.cells.size();
-  std::uint8_t* const observed = observed_.data();
-  for (; end - c >= 4; c += 4) {
-    observed[c[0].cell] = 1;
-    observed[c[1].cell] = 1;
-    observed[c[2].cell] = 1;
-    observed[c[3].cell] = 1;
-  }
-  for (; c != end; ++c) observed[c->cell] = 1;
-}
-
 void Mapper::applyFootprint(const Footprint& footprint) {
-  rule_->apply(footprint);
+  rule_->apply(footprint, grid_);
   if (observer_) observer_->observe(footprint);
   markObserved(footprint);
   ++readings_;
@@ -102,7 +87,7 @@ void Mapper::integrate(const Scan& scan, double until) {
   for (const Reading& r : scan.readings) {
     if (r.time > until) continue;
     scratch_.clear();
-    model_->footprint(beamOf(robot, r), grid_, *tables_, scratch_);
+    model_->footprint(beamOf(robot, r), grid_.spec(), *tables_, scratch_);
     applyFootprint(scratch_);
   }
 }
@@ -186,7 +171,7 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
     for (std::size_t i = 0; i < n; ++i) {
       if (cancel && i % kCancelStride == 0 && cancel->load(std::memory_order_relaxed)) return false;
       scratch_.clear();
-      model_->footprint(beams[i], grid_, *tables_, scratch_);
+      model_->footprint(beams[i], grid_.spec(), *tables_, scratch_);
       applyFootprint(scratch_);
     }
     return true;
@@ -195,7 +180,8 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
   // model's footprints are too cheap to be worth cutting up (HIMM's axis line): then the pipeline.
   // No more threads than stripes: a thread without rows would read every beam for nothing.
   if (!observer_ && model_->rasterisesRows()) {
-    const auto stripes = static_cast<unsigned>((grid_.height + kStripeRows - 1) / kStripeRows);
+    const auto stripes =
+        static_cast<unsigned>((grid_.spec().height + kStripeRows - 1) / kStripeRows);
     return integrateStripes(beams, cancel, std::max(1u, std::min(threads, stripes)));
   }
 
@@ -203,7 +189,7 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
   auto compute = [&](std::size_t i) {
     Pipeline::Slot& slot = p.slots[i % kSlots];
     slot.footprint.clear();
-    model_->footprint(beams[i], grid_, *tables_, slot.footprint);
+    model_->footprint(beams[i], grid_.spec(), *tables_, slot.footprint);
     slot.holds.store(static_cast<std::int64_t>(i), std::memory_order_release);
     slot.holds.notify_one();
   };
@@ -321,8 +307,8 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
       for (std::size_t i = 0; i < n; ++i) {
         if (stopping(i)) return halt(i);
         fp.clear();
-        model_->footprintRows(beams[i], grid_, *tables_, rows[k], fp);
-        rule_->apply(fp);
+        model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
+        rule_->apply(fp, grid_);
         markObserved(fp);
       }
     });
@@ -360,7 +346,7 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
         FootprintTotals sum;
         for (const Step& b : state) sum.occupied += b.partial[applied];
         const Footprint& fp = ring[applied % kSlots];
-        rule_->applyPart(fp, sum);
+        rule_->applyPart(fp, sum, grid_);
         markObserved(fp);
         ++applied;
       };
@@ -372,7 +358,7 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
         }
         Footprint& fp = ring[i % kSlots];
         fp.clear();
-        model_->footprintRows(beams[i], grid_, *tables_, rows[k], fp);
+        model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
         mine.partial[i] = occupiedFixedPoint(fp);
         mine.posted.fetch_add(1, std::memory_order_release);  // keeps kHalted
         mine.posted.notify_all();
@@ -394,7 +380,7 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
 
 OccupancyMap Mapper::snapshot() const {
   OccupancyMap m;
-  m.spec = grid_;
+  m.spec = grid_.spec();
   m.model = settings_.model;
   m.rule = settings_.rule;
   const std::size_t n = grid_.cellCount();
@@ -402,14 +388,84 @@ OccupancyMap Mapper::snapshot() const {
   m.native.resize(n);
   m.level.resize(n);
   m.filled.resize(n);
-  m.observed = observed_;
+  m.observed.resize(n);
+  grid_.copyObserved(0, n, m.observed.data());
   // Split between threads for large grids: a 5 cm grid of a room and its ghosts is 200 000 cells
   // and this is on the path from a slider to the picture.
   const auto parts = static_cast<unsigned>(
       std::clamp<std::size_t>(n / kSnapshotCellsPerThread, 1, parallelThreads()));
-  runParallel(parts,
-              [&](unsigned k) { rule_->writeLayers(m, n * k / parts, n * (k + 1) / parts); });
+  runParallel(
+      parts, [&](unsigned k) { rule_->writeLayers(grid_, m, n * k / parts, n * (k + 1) / parts); });
   return m;
+}
+
+bool Mapper::grow(const Position& lo, const Position& hi) {
+  const GridSpec before = grid_.spec();
+  if (grid_.covers(lo, hi)) return false;
+  if (observer_) {
+    throw MapperError(
+        "the grid must grow to hold the new readings, and a footprint observer "
+        "counts the cells of its present limits; map the log in one batch instead");
+  }
+  try {
+    grid_.growToCover(lo, hi);
+  } catch (const GridLimitError& e) {
+    throw MapperError(e.what());
+  }
+  return grid_.spec() != before;
+}
+
+bool Mapper::reserve(const Position& lo, const Position& hi) {
+  return grow(lo, hi);
+}
+
+bool Mapper::append(std::span<const Scan> scans, double until, const std::atomic<bool>* cancel) {
+  std::vector<Beam> beams;
+  for (const Scan& scan : scans) {
+    if (settings_.pose == PoseSource::Truth && !scan.truth) {
+      throw MapperError("the scan at t = " + std::to_string(scan.time) +
+                        " s has no true pose; map with odometry (--pose odom)");
+    }
+    const Pose2D& robot = settings_.pose == PoseSource::Truth ? *scan.truth : scan.odometry;
+    if (!robot.position.allFinite() || !std::isfinite(robot.heading)) {
+      throw MapperError("the scan at t = " + std::to_string(scan.time) +
+                        " s has a pose that is not a finite number");
+    }
+    for (const Reading& r : scan.readings)
+      if (r.time <= until) beams.push_back(beamOf(robot, r));
+  }
+  if (beams.empty()) return true;
+  // The model writes no further than its reach from the sensor (cell centres within it); two cells
+  // more hold the cells those centres lie in, whatever the rounding. The grid grows once for the
+  // whole batch: growth keeps every cell, so it is the same as growing before each reading.
+  const double reach = model_->reach(ring_.maxRange) + 2.0 * grid_.spec().cellSize;
+  Position lo = beams.front().sensor.position, hi = lo;
+  for (const Beam& b : beams) {
+    lo = lo.cwiseMin(b.sensor.position);
+    hi = hi.cwiseMax(b.sensor.position);
+  }
+  grow(Position(lo.x() - reach, lo.y() - reach), Position(hi.x() + reach, hi.y() + reach));
+  return integrateBeams(beams, cancel);
+}
+
+const OccupancyMap& Mapper::liveMap(RowBand* rewritten) {
+  const GridSpec& spec = grid_.spec();
+  const std::vector<RowBand> runs = grid_.takeDirtyRuns();
+  if (live_.spec != spec || live_.probability.size() != grid_.cellCount()) {
+    live_ = snapshot();
+    if (rewritten) *rewritten = RowBand{0, spec.height};
+    return live_;
+  }
+  const auto width = static_cast<std::size_t>(spec.width);
+  for (const RowBand& run : runs) {
+    const std::size_t begin = static_cast<std::size_t>(run.begin) * width;
+    const std::size_t end = static_cast<std::size_t>(run.end) * width;
+    rule_->writeLayers(grid_, live_, begin, end);
+    grid_.copyObserved(begin, end, live_.observed.data());
+  }
+  if (rewritten)
+    *rewritten = runs.empty() ? RowBand{} : RowBand{runs.front().begin, runs.back().end};
+  return live_;
 }
 
 }  // namespace sg

@@ -1,12 +1,16 @@
 #pragma once
-// Mapper = SensorModel × UpdateRule × parameters × GridSpec (DESIGN.md, "Data flow"). Batch mapping
+// Mapper = SensorModel × UpdateRule × parameters × Grid (DESIGN.md, "Data flow"). Batch mapping
 // (a whole log, or up to time t) is incremental mapping run over the scans in order, so both give
-// bit-identical grids, and the result depends on nothing but the inputs.
+// bit-identical grids, and the result depends on nothing but the inputs. Streaming (append())
+// grows the grid before each batch of scans so that no footprint is cut by its edge; the map is
+// then bit-identical to a batch map of the same scans on the grown grid (docs/models.md, "Batch,
+// incremental and live mapping").
 
 #include <atomic>
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,6 +18,7 @@
 #include "sonargrid/beam_tables.h"
 #include "sonargrid/dataset.h"
 #include "sonargrid/footprint.h"
+#include "sonargrid/grid.h"
 #include "sonargrid/models/sensor_model.h"
 #include "sonargrid/occupancy_map.h"
 #include "sonargrid/parameters.h"
@@ -53,12 +58,14 @@ class Mapper {
   // empty grid.
   Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings& settings);
 
-  const GridSpec& grid() const { return grid_; }
+  // The grid's limits now (append() and reserve() may have grown them) and its storage.
+  const GridSpec& grid() const { return grid_.spec(); }
+  const Grid& storage() const { return grid_; }
   const MapperSettings& settings() const { return settings_; }
   const SensorModel& model() const { return *model_; }
   const UpdateRule& rule() const { return *rule_; }
 
-  // Forgets every reading.
+  // Forgets every reading (the grid keeps its present limits).
   void reset();
 
   // Incremental mapping: folds in one scan's readings whose time is at most `until`. Throws
@@ -75,11 +82,31 @@ class Mapper {
   bool mapDataset(const Dataset& dataset, double until = std::numeric_limits<double>::infinity(),
                   const std::atomic<bool>* cancel = nullptr);
 
+  // Streaming: first grows the grid until it holds the whole footprint of every reading of `scans`
+  // up to `until` (the model's reach around each sensor), then integrates them in order, on several
+  // threads for a large batch as mapDataset() does. Appending a log's scans in any number of
+  // batches gives, bit for bit, what mapDataset() of all of them gives on the grid's final limits.
+  // With PoseSource::Truth every scan must have a true pose. Returns false when `cancel` stopped it
+  // part-way (then map again or reset). Throws MapperError for a reading naming a sonar the ring
+  // does not have, a scan without the pose asked for, a grid that would pass kMaxGridCells, or an
+  // observer when the grid must grow (it counts cells of the old limits).
+  bool append(std::span<const Scan> scans, double until = std::numeric_limits<double>::infinity(),
+              const std::atomic<bool>* cancel = nullptr);
+  // Grows the grid, if it must, to cover the world box [lo, hi] (as append() grows it). Returns
+  // whether the limits changed. Throws MapperError as append() does.
+  bool reserve(const Position& lo, const Position& hi);
+
   std::size_t readingsIntegrated() const { return readings_; }
 
   // Optional; not owned. Reset with the mapper and fed every footprint after the rule applies it.
   void setObserver(FootprintObserver* observer);
   OccupancyMap snapshot() const;
+  // A snapshot the mapper keeps and brings up to date: only the rows written since the previous
+  // call are computed again (every row after reset() or growth, and on the first call), so a live
+  // map's refresh costs the rows that changed. Bit-identical to snapshot(). `rewritten`, when
+  // given, receives the rows it rewrote as one band (every row between the first and the last).
+  // The reference is valid until the next call or the mapper's end.
+  const OccupancyMap& liveMap(RowBand* rewritten = nullptr);
 
   // The cells one reading writes, as the model gives them (for the beam view and tests).
   Footprint footprintOf(const Pose2D& robot, const Reading& reading) const;
@@ -87,18 +114,19 @@ class Mapper {
  private:
   Beam beamOf(const Pose2D& robot, const Reading& reading) const;
   void applyFootprint(const Footprint& footprint);
-  void markObserved(const Footprint& footprint);
+  void markObserved(const Footprint& footprint) { grid_.markWritten(footprint); }
+  bool grow(const Position& lo, const Position& hi);
   bool integrateBeams(const std::vector<Beam>& beams, const std::atomic<bool>* cancel);
   bool integrateStripes(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
                         unsigned threads);
 
   SonarRing ring_;
-  GridSpec grid_;
   MapperSettings settings_;
   std::unique_ptr<SensorModel> model_;
   std::unique_ptr<UpdateRule> rule_;
+  Grid grid_;
   std::shared_ptr<const BeamTables> tables_;
-  std::vector<std::uint8_t> observed_;
+  OccupancyMap live_;  // liveMap()'s, empty until it is first asked for
   Footprint scratch_;
   FootprintObserver* observer_ = nullptr;
   std::size_t readings_ = 0;

@@ -127,23 +127,32 @@ class FaultyRule final : public UpdateRule {
       : real_(std::move(real)), fault_(fault) {}
   const RuleInfo& info() const override { return real_->info(); }
   void configure(const ParameterSet& params) override { real_->configure(params); }
-  void reset(std::size_t cells) override { real_->reset(cells); }
-  void apply(const Footprint& footprint) override {
+  CellLayout layout() const override { return real_->layout(); }
+  void apply(const Footprint& footprint, Grid& grid) const override {
     fault_.maybeThrow("rule");
-    real_->apply(footprint);
+    real_->apply(footprint, grid);
   }
   bool needsTotals() const override { return real_->needsTotals(); }
-  void applyPart(const Footprint& part, const FootprintTotals& totals) override {
+  void applyPart(const Footprint& part, const FootprintTotals& totals, Grid& grid) const override {
     fault_.maybeThrow("rule");
-    real_->applyPart(part, totals);
+    real_->applyPart(part, totals, grid);
   }
-  double occupancy(std::size_t cell) const override { return real_->occupancy(cell); }
-  double native(std::size_t cell) const override { return real_->native(cell); }
-  bool filled(std::size_t cell) const override { return real_->filled(cell); }
-  std::uint8_t level(std::size_t cell) const override { return real_->level(cell); }
-  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override {
+  double occupancy(const Grid& grid, std::size_t cell) const override {
+    return real_->occupancy(grid, cell);
+  }
+  double native(const Grid& grid, std::size_t cell) const override {
+    return real_->native(grid, cell);
+  }
+  bool filled(const Grid& grid, std::size_t cell) const override {
+    return real_->filled(grid, cell);
+  }
+  std::uint8_t level(const Grid& grid, std::size_t cell) const override {
+    return real_->level(grid, cell);
+  }
+  void writeLayers(const Grid& grid, OccupancyMap& map, std::size_t begin,
+                   std::size_t end) const override {
     fault_.maybeThrow("rule");
-    real_->writeLayers(map, begin, end);
+    real_->writeLayers(grid, map, begin, end);
   }
 
  private:

@@ -10,6 +10,7 @@
 #include "sonargrid/concurrency.h"
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/mapper.h"
+#include "sonargrid/scan_source.h"
 
 using namespace sg;
 
@@ -93,6 +94,14 @@ class TstMapper : public QObject {
   void buildsWalls();
   void errors();
   void cancel();
+  void appendEqualsBatch_data();
+  void appendEqualsBatch();
+  void growthKeepsEveryValue_data();
+  void growthKeepsEveryValue();
+  void dirtyRowsAreTheRowsWritten_data();
+  void dirtyRowsAreTheRowsWritten();
+  void streamFromAnotherThread();
+  void appendErrors();
 };
 
 void TstMapper::batchEqualsIncremental_data() {
@@ -413,6 +422,257 @@ void TstMapper::cancel() {
   std::atomic<bool> stop{true};
   QVERIFY(!m.mapDataset(d, std::numeric_limits<double>::infinity(), &stop));
   QCOMPARE(m.readingsIntegrated(), std::size_t{0});
+}
+
+// Streaming.
+
+namespace {
+
+// A one-cell grid at the first scan's position: everything else is growth.
+GridSpec seedGrid(const Dataset& d, double cell = 0.05) {
+  const Position p = d.scans.front().odometry.position;
+  return GridSpec::covering(p, p, cell, 0.0);
+}
+
+// The rows of the grid that the readings of `scans` write, from the model's footprints.
+std::set<int> rowsWritten(const Mapper& m, std::span<const Scan> scans) {
+  std::set<int> rows;
+  for (const Scan& scan : scans)
+    for (const Reading& r : scan.readings)
+      for (const CellEvidence& c : m.footprintOf(scan.odometry, r).cells)
+        rows.insert(static_cast<int>(c.cell / static_cast<std::uint32_t>(m.grid().width)));
+  return rows;
+}
+
+}  // namespace
+
+void TstMapper::appendEqualsBatch_data() {
+  batchEqualsIncremental_data();
+}
+
+void TstMapper::appendEqualsBatch() {
+  // A 30 m corridor walk (600 scans, 9600 readings), mapped as a live robot would send it: the
+  // first half at once (4800 readings: on several threads) on a grid that starts as one cell, then
+  // the second half in 10 batches of 30 scans, each followed by a live refresh of the map. The
+  // result equals, bit for bit in every layer, a batch map of all 600 scans on the grid's final
+  // limits. The grid had to grow during the second half (the first half's grid reaches 5.3 m
+  // past x = 15 m; the robot drives to x = 30 m), so growth kept every value.
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  const Dataset d = corridor(600);
+  MapperSettings s;
+  s.model = model.toStdString();
+  s.rule = rule.toStdString();
+  const std::span<const Scan> all(d.scans);
+  Mapper live(d.ring, seedGrid(d), s);
+  QVERIFY(live.append(all.first(300)));
+  const GridSpec firstHalf = live.grid();
+  live.liveMap();
+  for (std::size_t b = 0; b < 10; ++b) {
+    QVERIFY(live.append(all.subspan(300 + 30 * b, 30)));
+    live.liveMap();
+  }
+  QVERIFY(live.grid() != firstHalf);
+  QCOMPARE(live.readingsIntegrated(), d.readingCount());
+
+  Mapper batch(d.ring, live.grid(), s);
+  QVERIFY(batch.mapDataset(d));
+  const OccupancyMap expected = batch.snapshot();
+  QVERIFY(sameLayers(expected, live.snapshot()));
+  QVERIFY(sameLayers(expected, live.liveMap()));
+  QVERIFY(expected.filledCount() > 0);
+  // No footprint was cut by the edge: the batch grid's border rows and columns are unobserved.
+  const GridSpec& g = expected.spec;
+  for (int x = 0; x < g.width; ++x) {
+    QVERIFY(!expected.observed[g.linear({x, 0})]);
+    QVERIFY(!expected.observed[g.linear({x, g.height - 1})]);
+  }
+}
+
+void TstMapper::growthKeepsEveryValue_data() {
+  QTest::addColumn<QString>("model");
+  QTest::addColumn<QString>("rule");
+  for (const std::string& r : updateRuleNames()) {
+    const std::string m = r == "himm" ? "himm" : "hpf";
+    QTest::newRow(r.c_str()) << QString::fromStdString(m) << QString::fromStdString(r);
+  }
+}
+
+void TstMapper::growthKeepsEveryValue() {
+  // The corridor mapped on its fitting grid, then the grid grown 3 m to the left, 2 m down and
+  // 4 m up (or more: growth has slack): at every old cell's world position the grown map has the
+  // same five layers, bit for bit; every new cell is what a cell nobody has seen is (a fresh
+  // map's), and unobserved.
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  const Dataset d = corridor();
+  MapperSettings s;
+  s.model = model.toStdString();
+  s.rule = rule.toStdString();
+  const GridSpec before = d.fittingGrid(PoseSource::Odometry, 0.05);
+  Mapper m(d.ring, before, s);
+  m.mapDataset(d);
+  const OccupancyMap old = m.snapshot();
+  const OccupancyMap unknown = Mapper(d.ring, before, s).snapshot();
+  const Position lo = before.origin - Position(3.0, 2.0);
+  const Position hi = before.origin + Position(1.0, before.heightMetres() + 4.0);
+  QVERIFY(m.reserve(lo, hi));
+  QVERIFY(!m.reserve(lo, hi));  // covered now
+  const GridSpec& after = m.grid();
+  // The origin moved by whole cells, at least the 60 and 40 asked for (more with the slack).
+  const Position moved = (before.origin - after.origin) / before.cellSize;
+  QVERIFY(std::abs(moved.x() - std::round(moved.x())) < 1e-9 && moved.x() >= 60.0 - 1e-9);
+  QVERIFY(std::abs(moved.y() - std::round(moved.y())) < 1e-9 && moved.y() >= 40.0 - 1e-9);
+  const OccupancyMap grown = m.snapshot();
+  std::vector<char> fromOld(grown.level.size(), 0);
+  for (std::size_t i = 0; i < old.level.size(); ++i) {
+    const CellIndex c = after.worldToCell(before.cellCentre(before.fromLinear(i)));
+    QVERIFY(after.contains(c));
+    const std::size_t j = after.linear(c);
+    fromOld[j] = 1;
+    QVERIFY(std::memcmp(&grown.probability[j], &old.probability[i], sizeof(double)) == 0);
+    QVERIFY(std::memcmp(&grown.native[j], &old.native[i], sizeof(double)) == 0);
+    QCOMPARE(grown.level[j], old.level[i]);
+    QCOMPARE(grown.filled[j], old.filled[i]);
+    QCOMPARE(grown.observed[j], old.observed[i]);
+  }
+  for (std::size_t j = 0; j < grown.level.size(); ++j) {
+    if (fromOld[j]) continue;
+    QVERIFY(std::memcmp(&grown.probability[j], &unknown.probability[0], sizeof(double)) == 0);
+    QVERIFY(std::memcmp(&grown.native[j], &unknown.native[0], sizeof(double)) == 0);
+    QCOMPARE(grown.level[j], unknown.level[0]);
+    QCOMPARE(grown.filled[j], std::uint8_t{0});
+    QCOMPARE(grown.observed[j], std::uint8_t{0});
+  }
+  QVERIFY(old.filledCount() > 0);
+}
+
+void TstMapper::dirtyRowsAreTheRowsWritten_data() {
+  QTest::addColumn<QString>("model");
+  QTest::addColumn<QString>("rule");
+  QTest::addColumn<unsigned>("threads");
+  // One thread scan by scan, and a batch above the threshold for threads: stripes of rows
+  // (Bayes), stripes in step (addition normalises), the ordered pipeline (HIMM's axis line); on
+  // one thread and on three (which do not divide the stripes evenly).
+  for (const auto& [m, r] :
+       {std::pair{"hpf", "bayes"}, std::pair{"hpf", "addition"}, std::pair{"himm", "himm"}})
+    for (unsigned threads : {1u, 3u})
+      QTest::addRow("%s x %s, threads %u", m, r, threads) << m << r << threads;
+}
+
+void TstMapper::dirtyRowsAreTheRowsWritten() {
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  QFETCH(unsigned, threads);
+  const ScopedThreadCount policy(threads);
+  MapperSettings s;
+  s.model = model.toStdString();
+  s.rule = rule.toStdString();
+  const Dataset& d = room();
+  const std::span<const Scan> all(d.scans);
+  Mapper m(d.ring, seedGrid(d), s);
+  QVERIFY(m.append(all));  // grows to hold every footprint of the log
+  const OccupancyMap& first = m.liveMap();
+  QVERIFY(sameLayers(first, m.snapshot()));
+  QVERIFY(m.storage().dirtyRows().empty());
+
+  // One scan, then three: the dirty rows are exactly those of their footprints, and the live map
+  // rewrites them (one band from the first to the last) and equals a full snapshot.
+  for (const std::span<const Scan> part : {all.subspan(40, 1), all.subspan(200, 3)}) {
+    const std::set<int> rows = rowsWritten(m, part);
+    QVERIFY(!m.reserve(m.grid().origin, m.grid().origin));
+    QVERIFY(m.append(part));
+    const std::vector<int> dirty = m.storage().dirtyRows();
+    QCOMPARE(dirty, std::vector<int>(rows.begin(), rows.end()));
+    RowBand band;
+    const OccupancyMap& refreshed = m.liveMap(&band);
+    QCOMPARE(band, (RowBand{*rows.begin(), *rows.rbegin() + 1}));
+    QVERIFY(sameLayers(refreshed, m.snapshot()));
+    QVERIFY(m.storage().dirtyRows().empty());
+  }
+  // The whole log again (11 888 readings, on several threads): every row any footprint writes.
+  const std::set<int> rows = rowsWritten(m, all);
+  const GridSpec spec = m.grid();
+  QVERIFY(m.append(all));
+  QCOMPARE(m.grid(), spec);
+  const std::vector<int> dirty = m.storage().dirtyRows();
+  QCOMPARE(dirty, std::vector<int>(rows.begin(), rows.end()));
+  QVERIFY(sameLayers(m.liveMap(), m.snapshot()));
+}
+
+void TstMapper::streamFromAnotherThread() {
+  // A link thread appends the room log to a scan source a few scans at a time while this thread
+  // maps whatever has arrived: the map equals the batch map of the whole log on the final limits.
+  const Dataset& d = room();
+  MapperSettings s;
+  s.model = "murphy";
+  s.rule = "logodds";
+  auto source = std::make_shared<ScanSource>(d.name, d.ring);
+  std::thread link([source, &d] {
+    for (std::size_t k = 0; k < d.scans.size(); k += 5) {
+      const auto end =
+          d.scans.begin() + static_cast<std::ptrdiff_t>(std::min(k + 5, d.scans.size()));
+      source->append(std::vector<Scan>(d.scans.begin() + static_cast<std::ptrdiff_t>(k), end));
+    }
+    source->finish();
+  });
+  Mapper m(d.ring, seedGrid(d), s);
+  std::size_t done = 0;
+  for (bool complete = false; !complete;) {
+    complete = source->complete();
+    const ScanPrefix p = source->prefix();
+    for (const std::span<const Scan> part : p.spans(done, p.size())) QVERIFY(m.append(part));
+    done = p.size();
+    m.liveMap();
+  }
+  link.join();
+  QCOMPARE(done, d.scans.size());
+  Mapper batch(d.ring, m.grid(), s);
+  QVERIFY(batch.mapDataset(d));
+  QVERIFY(sameLayers(batch.snapshot(), m.liveMap()));
+}
+
+void TstMapper::appendErrors() {
+  const Dataset d = corridor(3);
+  MapperSettings s;
+  // Truth asked for, a scan without it: refused before anything is integrated.
+  s.pose = PoseSource::Truth;
+  Dataset noTruth = d;
+  noTruth.scans[2].truth.reset();
+  Mapper m(d.ring, seedGrid(d), s);
+  try {
+    m.append(noTruth.scans);
+    QFAIL("a scan without a true pose was mapped with true poses");
+  } catch (const MapperError& e) {
+    QVERIFY2(std::string(e.what()).find("no true pose") != std::string::npos, e.what());
+  }
+  QCOMPARE(m.readingsIntegrated(), std::size_t{0});
+  // A pose 10 000 km away would need a grid past the limit (docs/cli.md, --cell).
+  Dataset far = d;
+  far.scans[1].odometry = Pose2D(1e7, 0.0, 0.0);
+  s.pose = PoseSource::Odometry;
+  Mapper m2(d.ring, seedGrid(d), s);
+  const GridSpec seed = m2.grid();
+  try {
+    m2.append(far.scans);
+    QFAIL("a grid past the limit was grown");
+  } catch (const MapperError& e) {
+    QVERIFY2(std::string(e.what()).find("limit of 200000000 cells") != std::string::npos, e.what());
+  }
+  QCOMPARE(m2.grid(), seed);
+  Dataset nan = d;
+  nan.scans[1].odometry = Pose2D(std::nan(""), 0.0, 0.0);
+  QVERIFY_THROWS_EXCEPTION(MapperError, m2.append(nan.scans));
+  // An observer counts cells of the limits it was reset with: growth is refused while one is set.
+  struct Counter final : FootprintObserver {
+    void reset(std::size_t) override {}
+    void observe(const Footprint&) override {}
+  } counter;
+  m2.setObserver(&counter);
+  QVERIFY_THROWS_EXCEPTION(MapperError, m2.append(d.scans));
+  m2.setObserver(nullptr);
+  QVERIFY(m2.append(d.scans));
+  QCOMPARE(m2.readingsIntegrated(), d.readingCount());
 }
 
 QTEST_GUILESS_MAIN(TstMapper)

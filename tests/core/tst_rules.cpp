@@ -11,15 +11,32 @@ using namespace sg;
 namespace {
 constexpr double kTol = 1e-6;
 
-std::unique_ptr<UpdateRule> rule(const char* name,
+// A rule and a one-row grid of `cells` cells made with its layout: the rule reads and writes only
+// the grid's cells.
+struct RuleOnGrid {
+  std::unique_ptr<UpdateRule> rule;
+  Grid grid;
+  void apply(const Footprint& f) { rule->apply(f, grid); }
+  void applyPart(const Footprint& f, const FootprintTotals& t) { rule->applyPart(f, t, grid); }
+  bool needsTotals() const { return rule->needsTotals(); }
+  double native(std::size_t i) const { return rule->native(grid, i); }
+  double occupancy(std::size_t i) const { return rule->occupancy(grid, i); }
+  bool filled(std::size_t i) const { return rule->filled(grid, i); }
+  std::uint8_t level(std::size_t i) const { return rule->level(grid, i); }
+};
+
+std::unique_ptr<RuleOnGrid> rule(const char* name,
                                  std::initializer_list<std::pair<const char*, double>> set = {},
                                  std::size_t cells = 3) {
   auto r = makeUpdateRule(name);
   ParameterSet p(r->info().parameters);
   for (const auto& [k, v] : set) p.set(k, v);
   r->configure(p);
-  r->reset(cells);
-  return r;
+  GridSpec spec;
+  spec.width = static_cast<int>(cells);
+  spec.height = 1;
+  Grid grid(spec, r->layout());
+  return std::make_unique<RuleOnGrid>(RuleOnGrid{std::move(r), std::move(grid)});
 }
 
 // One reading's footprint: (cell, pE, pO, P).
@@ -214,8 +231,7 @@ void TstRules::dempsterShafer() {
 
 void TstRules::unseenCellsAreUnknown() {
   for (const std::string& name : updateRuleNames()) {
-    auto r = makeUpdateRule(name);
-    r->reset(4);
+    auto r = rule(name.c_str(), {}, 4);
     QVERIFY(!r->filled(3));
     // HIMM has no "unknown": CV 0 is both unseen and free (paper 000 §2.2).
     if (name != "himm") NEAR(r->occupancy(3), 0.5);

@@ -153,6 +153,27 @@ class TestGridView : public QObject {
     QCOMPARE(view.view(), ViewTransform::fitting(elsewhere, view.size()));
   }
 
+  void keepsAMovedViewWhenTheMapGrows() {
+    // A live map's grid grows by whole cells around the old one (Mapper::append): a view the user
+    // zoomed stays; a view still fitted fits the grown grid.
+    GridSpec grown = markedMap()->spec;  // [-2, 8] x [-1, 4] grown to [-12, 18] x [-6, 9]
+    grown.origin = {-12.0, -6.0};
+    grown.width = 60;
+    grown.height = 30;
+    GridView view;
+    view.resize(400, 300);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    view.setMap(markedMap());
+    view.setMap(std::make_shared<OccupancyMap>(OccupancyMap::unobserved(grown)));
+    QCOMPARE(view.view(), ViewTransform::fitting(grown, view.size()));
+    view.setMap(markedMap());
+    view.zoomAt(2.0, QPointF(100, 100));
+    const ViewTransform zoomed = view.view();
+    view.setMap(std::make_shared<OccupancyMap>(OccupancyMap::unobserved(grown)));
+    QCOMPARE(view.view(), zoomed);
+  }
+
   void overlayToggles() {
     GridView view;
     view.setOverlays({});

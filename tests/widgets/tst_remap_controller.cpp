@@ -7,6 +7,7 @@
 
 #include "remap_controller.h"
 #include "sonargrid/io/sglog.h"
+#include "sonargrid/scan_source.h"
 
 using namespace sg;
 using namespace sg::ui;
@@ -46,6 +47,48 @@ OccupancyMap batchMap(const Dataset& data, const MapperSettings& s, double until
 
 std::shared_ptr<const Dataset> roomLog() {
   return std::make_shared<const Dataset>(readSglog(SONARGRID_DATASETS "/room/room.sglog"));
+}
+
+// A robot driving 40 m along a wavy line, 2000 scans of 16 random ranges (fixed seed): the second
+// half takes it past where the first half's grid (with its slack) ends.
+Dataset walkLog() {
+  Dataset d;
+  d.name = "walk";
+  d.ring = SonarRing::pioneer3dx();
+  std::mt19937 random(2000);
+  std::uniform_real_distribution<double> range(0.3, 4.8);
+  for (int i = 0; i < 2000; ++i) {
+    Scan s;
+    s.time = 0.1 * i;
+    s.odometry = Pose2D(0.02 * i, 2.0 * std::sin(0.002 * i), 0.001 * i);
+    for (std::uint16_t k = 0; k < 16; ++k)
+      s.readings.push_back({k, range(random), s.time + 0.001 * k});
+    d.scans.push_back(std::move(s));
+  }
+  return d;
+}
+
+// What a batch run of the scans [0, count) maps on the limits `spec`.
+OccupancyMap batchOn(const Dataset& data, std::size_t count, const MapperSettings& s,
+                     const GridSpec& spec) {
+  Dataset part = data;
+  part.scans.resize(count);
+  Mapper m(data.ring, spec, s);
+  m.mapDataset(part);
+  return m.snapshot();
+}
+
+bool sameLayers(const OccupancyMap& a, const OccupancyMap& b) {
+  return a.spec == b.spec && a.level == b.level && a.filled == b.filled &&
+         a.observed == b.observed &&
+         std::memcmp(a.probability.data(), b.probability.data(),
+                     a.probability.size() * sizeof(double)) == 0 &&
+         std::memcmp(a.native.data(), b.native.data(), a.native.size() * sizeof(double)) == 0;
+}
+
+std::vector<Scan> scansOf(const Dataset& d, std::size_t from, std::size_t to) {
+  return std::vector<Scan>(d.scans.begin() + static_cast<std::ptrdiff_t>(from),
+                           d.scans.begin() + static_cast<std::ptrdiff_t>(to));
 }
 
 }  // namespace
@@ -172,6 +215,110 @@ class TestRemapController : public QObject {
     QCOMPARE(mapped.last().at(3).toBool(), false);
     QVERIFY(mapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>()->level ==
             batchMap(*data, s, 10.0, 0.05).level);
+  }
+
+  void liveAppendsEqualTheBatchMap() {
+    // A live log: the first half, then ten batches of 100 scans, each followed by
+    // scansAppended() and its map. Every append is delivered as a continuation (no re-map), and
+    // each equals, in every layer, the batch map of the scans received so far on its limits; the
+    // grid grew on the way. A change of settings then re-maps everything received, on the same
+    // limits, and the next append continues it.
+    const Dataset d = walkLog();
+    auto source = std::make_shared<ScanSource>(d.name, d.ring);
+    source->append(scansOf(d, 0, 1000));
+    const MapperSettings first = settingsFor("hpf", "addition");
+    RemapController remap;
+    QSignalSpy mapped(&remap, &RemapController::mapped);
+    QSignalSpy cancelled(&remap, &RemapController::cancelled);
+    remap.startLive(source, 0.05, first);
+    QVERIFY(mapped.wait(60000));
+    QCOMPARE(mapped.last().at(3).toBool(), false);
+    const auto firstMap = mapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>();
+    QVERIFY(sameLayers(*firstMap, batchOn(d, 1000, first, firstMap->spec)));
+
+    for (std::size_t b = 0; b < 10; ++b) {
+      const std::size_t end = 1100 + 100 * b;
+      source->append(scansOf(d, end - 100, end));
+      remap.scansAppended();
+      QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), static_cast<int>(b) + 2, 60000);
+      QCOMPARE(mapped.last().at(3).toBool(), true);
+      const auto map = mapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>();
+      QVERIFY2(sameLayers(*map, batchOn(d, end, first, map->spec)), qPrintable(QString::number(b)));
+    }
+    const auto appended = mapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>();
+    QVERIFY(appended->spec != firstMap->spec);  // it had to grow
+    QCOMPARE(cancelled.count(), 0);
+
+    const MapperSettings second = settingsFor("hpf", "bayes");  // same model, same reach
+    remap.setSettings(second);
+    QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), 12, 60000);
+    QCOMPARE(mapped.last().at(3).toBool(), false);
+    const auto remapped = mapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>();
+    QCOMPARE(remapped->spec, appended->spec);  // the live view keeps its ground
+    QCOMPARE(remapped->rule, std::string("bayes"));
+    QVERIFY(sameLayers(*remapped, batchOn(d, 2000, second, remapped->spec)));
+
+    source->append(scansOf(d, 2000, 2000));  // nothing
+    remap.scansAppended();
+    QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), 13, 60000);
+    QCOMPARE(mapped.last().at(3).toBool(), true);
+    QVERIFY(
+        sameLayers(*mapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>(), *remapped));
+  }
+
+  void liveAppendsWhileBusyAreCoalesced() {
+    // Appends that arrive while a run is under way join one queued run: nothing is cancelled,
+    // the maps arrive in order and the last holds every scan. (The link appends from this thread
+    // here; the source itself is safe to append to from another: tst_scan_source.)
+    const Dataset d = walkLog();
+    auto source = std::make_shared<ScanSource>(d.name, d.ring);
+    source->append(scansOf(d, 0, 200));
+    const MapperSettings s = settingsFor("konolige", "logodds");
+    RemapController remap;
+    QSignalSpy mapped(&remap, &RemapController::mapped);
+    QSignalSpy cancelled(&remap, &RemapController::cancelled);
+    remap.startLive(source, 0.05, s);
+    for (std::size_t k = 200; k < 2000; k += 50) {
+      source->append(scansOf(d, k, k + 50));
+      remap.scansAppended();
+    }
+    QTRY_VERIFY_WITH_TIMEOUT(!remap.busy(), 120000);
+    QCOMPARE(cancelled.count(), 0);
+    QVERIFY(mapped.count() >= 2);
+    QVERIFY(mapped.count() <= 1 + 36);  // at most one per append, fewer when they joined
+    quint64 last = 0;
+    for (const QList<QVariant>& m : mapped) {
+      QVERIFY(m.at(2).value<quint64>() > last);
+      last = m.at(2).value<quint64>();
+    }
+    const auto map = mapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>();
+    QVERIFY(sameLayers(*map, batchOn(d, 2000, s, map->spec)));
+  }
+
+  void liveTimeBackwardsRemaps() {
+    // A live map taken back in time maps the readings up to then, on the same limits; forward
+    // again, it continues.
+    const Dataset d = walkLog();
+    auto source = std::make_shared<ScanSource>(d.name, d.ring);
+    source->append(scansOf(d, 0, 600));
+    const MapperSettings s = settingsFor("parameterized", "bayes-recursive");
+    RemapController remap;
+    QSignalSpy mapped(&remap, &RemapController::mapped);
+    remap.startLive(source, 0.05, s);
+    QVERIFY(mapped.wait(60000));
+    const auto whole = mapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>();
+    remap.setUntil(30.0);  // the readings up to 30 s: half the scans
+    QVERIFY(mapped.wait(60000));
+    QCOMPARE(mapped.last().at(3).toBool(), false);
+    const auto back = mapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>();
+    QCOMPARE(back->spec, whole->spec);
+    Mapper m(d.ring, back->spec, s);
+    m.mapDataset(d, 30.0);
+    QVERIFY(sameLayers(*back, m.snapshot()));
+    remap.setUntil(std::numeric_limits<double>::infinity());
+    QVERIFY(mapped.wait(60000));
+    QCOMPARE(mapped.last().at(3).toBool(), true);
+    QVERIFY(sameLayers(*mapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>(), *whole));
   }
 
   void failureIsReported() {

@@ -24,36 +24,33 @@ void AdditionRule::configure(const ParameterSet& p) {
   normalise_ = p.get("normalise") != 0.0;
 }
 
-void AdditionRule::reset(std::size_t cells) {
-  emp_.assign(cells, 0.0);
-  occ_.assign(cells, 0.0);
-}
-
-void AdditionRule::apply(const Footprint& fp) {
+void AdditionRule::apply(const Footprint& fp, Grid& grid) const {
   FootprintTotals totals;
   if (normalise_) totals.occupied = occupiedFixedPoint(fp);
-  applyPart(fp, totals);
+  applyPart(fp, totals, grid);
 }
 
-void AdditionRule::applyPart(const Footprint& fp, const FootprintTotals& totals) {
+void AdditionRule::applyPart(const Footprint& fp, const FootprintTotals& totals, Grid& grid) const {
   // The echo came from one cell of the arc, so the arc's occupied evidence shares a total of one.
   double scale = 1.0;
   if (normalise_ && totals.occupied > 0) scale = 1.0 / totals.occupiedSum();
+  EmptyEvidence* const emp = grid.cells<EmptyEvidence>(0);
+  OccupiedEvidence* const occ = grid.cells<OccupiedEvidence>(1);
   for (const CellEvidence& c : fp.cells) {
     if (c.empty > 0.0) {
-      double& e = emp_[c.cell];
+      double& e = emp[c.cell].emp;
       e = e + c.empty - e * c.empty;
     }
     if (c.occupied > 0.0) {
       const double po = c.occupied * scale;
-      double& o = occ_[c.cell];
+      double& o = occ[c.cell].occ;
       o = o + po - o * po;
     }
   }
 }
 
-double AdditionRule::native(std::size_t i) const {
-  const double o = occ_[i], e = emp_[i];
+double AdditionRule::nativeOf(const EmptyEvidence& emp, const OccupiedEvidence& occ) const {
+  const double o = occ.occ, e = emp.emp;
   if (paper001Combine_) {
     // Paper 001 leaves Occ = Emp undefined; "no evidence either way" is 0.5.
     if (o > e) return o;
@@ -63,13 +60,9 @@ double AdditionRule::native(std::size_t i) const {
   return o >= e ? o : -e;
 }
 
-double AdditionRule::occupancy(std::size_t i) const {
-  const double v = native(i);
+double AdditionRule::occupancyOf(const EmptyEvidence& emp, const OccupiedEvidence& occ) const {
+  const double v = nativeOf(emp, occ);
   return paper001Combine_ ? v : 0.5 * (1.0 + v);
-}
-
-void AdditionRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
-  writeLayersOf(*this, map, begin, end);
 }
 
 }  // namespace sg

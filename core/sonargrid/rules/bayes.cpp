@@ -30,16 +30,13 @@ void BayesRule::configure(const ParameterSet& p) {
   prior_ = p.get("prior");
 }
 
-void BayesRule::reset(std::size_t cells) {
-  map_.assign(cells, prior_);
-}
-
-void BayesRule::apply(const Footprint& fp) {
+void BayesRule::apply(const Footprint& fp, Grid& grid) const {
+  BayesCell* const cells = grid.cells<BayesCell>();
   // One loop per input, so the choice is not made per cell.
-  auto update = [this, &fp](auto probability) {
+  auto update = [cells, &fp](auto probability) {
     for (const CellEvidence& c : fp.cells) {
       const double p = probability(c);
-      double& m = map_[c.cell];
+      double& m = cells[c.cell].p;
       const double num = p * m;
       const double den = num + (1.0 - p) * (1.0 - m);
       // den = 0 only when certain evidence meets a certain opposite cell; Bayes is undefined there
@@ -55,10 +52,6 @@ void BayesRule::apply(const Footprint& fp) {
   } else {
     update([](const CellEvidence& c) { return static_cast<double>(c.probability); });
   }
-}
-
-void BayesRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
-  writeLayersOf(*this, map, begin, end);
 }
 
 }  // namespace sg

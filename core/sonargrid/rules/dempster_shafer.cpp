@@ -23,15 +23,12 @@ const RuleInfo& DempsterShaferRule::staticInfo() {
 
 void DempsterShaferRule::configure(const ParameterSet& /*params*/) {}
 
-void DempsterShaferRule::reset(std::size_t cells) {
-  mass_.assign(cells, Masses{});
-}
-
-void DempsterShaferRule::apply(const Footprint& fp) {
+void DempsterShaferRule::apply(const Footprint& fp, Grid& grid) const {
+  DempsterShaferCell* const cells = grid.cells<DempsterShaferCell>();
   for (const CellEvidence& c : fp.cells) {
     double o = std::clamp(static_cast<double>(c.occupied), 0.0, 1.0);
     double e = std::clamp(static_cast<double>(c.empty), 0.0, 1.0);
-    Masses& m = mass_[c.cell];
+    DempsterShaferCell& m = cells[c.cell];
     double& mo = m.occ;
     double& me = m.emp;
     // Every model gives a cell one kind of evidence; Dempster's rule then shortens to
@@ -74,13 +71,9 @@ void DempsterShaferRule::apply(const Footprint& fp) {
   }
 }
 
-double DempsterShaferRule::occupancy(std::size_t i) const {
-  const double mu = 1.0 - mass_[i].occ - mass_[i].emp;
-  return mass_[i].occ + 0.5 * mu;
-}
-
-void DempsterShaferRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
-  writeLayersOf(*this, map, begin, end);
+double DempsterShaferRule::occupancyOf(const DempsterShaferCell& c) const {
+  const double mu = 1.0 - c.occ - c.emp;
+  return c.occ + 0.5 * mu;
 }
 
 }  // namespace sg

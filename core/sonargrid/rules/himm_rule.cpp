@@ -29,23 +29,16 @@ void HimmRule::configure(const ParameterSet& p) {
   cvMax_ = static_cast<int>(p.get("cv_max"));
 }
 
-void HimmRule::reset(std::size_t cells) {
-  cv_.assign(cells, 0);
-}
-
-void HimmRule::apply(const Footprint& fp) {
+void HimmRule::apply(const Footprint& fp, Grid& grid) const {
+  HimmCell* const cells = grid.cells<HimmCell>();
   for (const CellEvidence& c : fp.cells) {
-    std::uint8_t& cv = cv_[c.cell];
+    std::uint8_t& cv = cells[c.cell].cv;
     if (c.occupied > c.empty) {
       cv = static_cast<std::uint8_t>(std::min(cvMax_, cv + increment_));
     } else if (c.empty > c.occupied) {
       cv = static_cast<std::uint8_t>(std::max(0, cv - decrement_));
     }
   }
-}
-
-void HimmRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
-  writeLayersOf(*this, map, begin, end);
 }
 
 }  // namespace sg

@@ -41,30 +41,23 @@ void LogOddsRule::configure(const ParameterSet& p) {
   maxOdds_ = odds(p.get("clamp_max"));
 }
 
-void LogOddsRule::reset(std::size_t cells) {
-  odds_.assign(cells, priorOdds_);
-}
-
-void LogOddsRule::apply(const Footprint& fp) {
+void LogOddsRule::apply(const Footprint& fp, Grid& grid) const {
+  LogOddsCell* const cells = grid.cells<LogOddsCell>();
   const double invPrior = 1.0 / priorOdds_;
   for (const CellEvidence& c : fp.cells) {
     const double p =
         std::clamp(static_cast<double>(c.probability), kProbabilityFloor, 1.0 - kProbabilityFloor);
-    double& o = odds_[c.cell];
+    double& o = cells[c.cell].odds;
     o = std::clamp(o * odds(p) * invPrior, minOdds_, maxOdds_);
   }
 }
 
-double LogOddsRule::native(std::size_t i) const {
-  return std::log(odds_[i]);
+double LogOddsRule::nativeOf(const LogOddsCell& c) const {
+  return std::log(c.odds);
 }
 
-double LogOddsRule::occupancy(std::size_t i) const {
-  return odds_[i] / (1.0 + odds_[i]);
-}
-
-void LogOddsRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
-  writeLayersOf(*this, map, begin, end);
+double LogOddsRule::occupancyOf(const LogOddsCell& c) const {
+  return c.odds / (1.0 + c.odds);
 }
 
 }  // namespace sg

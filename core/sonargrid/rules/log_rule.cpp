@@ -33,14 +33,11 @@ void LogRule::configure(const ParameterSet& p) {
   cutMax_ = p.get("cut_max");
 }
 
-void LogRule::reset(std::size_t cells) {
-  product_.assign(cells, 1.0);
-}
-
-void LogRule::apply(const Footprint& fp) {
+void LogRule::apply(const Footprint& fp, Grid& grid) const {
   constexpr double kLow = 1e-300, kHigh = 1e300;
+  LogCell* const cells = grid.cells<LogCell>();
   for (const CellEvidence& c : fp.cells) {
-    double& m = product_[c.cell];
+    double& m = cells[c.cell].product;
     m *= (1.0 - static_cast<double>(c.empty)) * (1.0 + static_cast<double>(c.occupied));
     if (m > kHigh)
       m = kHigh;
@@ -49,18 +46,14 @@ void LogRule::apply(const Footprint& fp) {
   }
 }
 
-double LogRule::native(std::size_t i) const {
-  return std::clamp(std::log10(product_[i]), cutMin_, cutMax_);
+double LogRule::nativeOf(const LogCell& c) const {
+  return std::clamp(std::log10(c.product), cutMin_, cutMax_);
 }
 
-double LogRule::occupancy(std::size_t i) const {
+double LogRule::occupancyOf(const LogCell& c) const {
   // Piecewise linear in the cut value: cut_min ↦ 0, 0 (no net evidence) ↦ 0.5, cut_max ↦ 1.
-  const double m = native(i);
+  const double m = nativeOf(c);
   return m >= 0.0 ? 0.5 + 0.5 * m / cutMax_ : 0.5 - 0.5 * m / cutMin_;
-}
-
-void LogRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
-  writeLayersOf(*this, map, begin, end);
 }
 
 }  // namespace sg

@@ -68,8 +68,4 @@ Compatibility compatibility(const std::string& model, const std::string& rule) {
   return {};
 }
 
-void UpdateRule::writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const {
-  writeLayersOf(*this, map, begin, end);
-}
-
 }  // namespace sg

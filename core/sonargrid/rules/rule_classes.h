@@ -1,36 +1,48 @@
 #pragma once
-// The concrete update rules. Only the registry and tests need these names.
+// The concrete update rules. Only the registry and tests need these names. Each names what it
+// keeps per grid cell (its planes: grid.h, CellLayout).
 
-#include <vector>
+#include <cstdint>
 
 #include "sonargrid/rules/update_rule.h"
 
 namespace sg {
 
-// Probability addition (paper 000 eqs 7–8, paper 001 §3.1).
-class AdditionRule final : public UpdateRule {
+// Probability addition (paper 000 eqs 7–8, paper 001 §3.1). Emp and Occ in planes of their own: a
+// cone writes one or the other to a cell.
+struct EmptyEvidence {
+  double emp;
+};
+struct OccupiedEvidence {
+  double occ;
+};
+class AdditionRule final : public RuleOnCells<AdditionRule, EmptyEvidence, OccupiedEvidence> {
  public:
   static const RuleInfo& staticInfo();
   const RuleInfo& info() const override { return staticInfo(); }
   void configure(const ParameterSet& params) override;
-  void reset(std::size_t cells) override;
-  void apply(const Footprint& footprint) override;
+  CellLayout layout() const override {
+    return CellLayout::of(EmptyEvidence{0.0}, OccupiedEvidence{0.0});
+  }
+  void apply(const Footprint& footprint, Grid& grid) const override;
   bool needsTotals() const override { return normalise_; }
-  void applyPart(const Footprint& part, const FootprintTotals& totals) override;
-  double occupancy(std::size_t cell) const override;
-  double native(std::size_t cell) const override;
-  bool filled(std::size_t cell) const override { return occ_[cell] > emp_[cell]; }
-  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override;
+  void applyPart(const Footprint& part, const FootprintTotals& totals, Grid& grid) const override;
+
+  double occupancyOf(const EmptyEvidence& e, const OccupiedEvidence& o) const;
+  double nativeOf(const EmptyEvidence& e, const OccupiedEvidence& o) const;
+  bool filledOf(const EmptyEvidence& e, const OccupiedEvidence& o) const { return o.occ > e.emp; }
 
  private:
   bool paper001Combine_ = false;
   bool normalise_ = true;
-  std::vector<double> emp_, occ_;
 };
 
 // Bayes' rule on one p(occ) layer. `Input::Evidence` is paper 001 §3.2 (pE ↦ (1 − pE)/2,
 // pO ↦ 0.5 + pO/2); `Input::Likelihood` is paper 002 eqs 5–6, fed the model's P(s|Occ).
-class BayesRule final : public UpdateRule {
+struct BayesCell {
+  double p;
+};
+class BayesRule final : public RuleOnCells<BayesRule, BayesCell> {
  public:
   enum class Input { Evidence, Likelihood };
   explicit BayesRule(Input input) : input_(input) {}
@@ -40,93 +52,94 @@ class BayesRule final : public UpdateRule {
     return input_ == Input::Evidence ? evidenceInfo() : likelihoodInfo();
   }
   void configure(const ParameterSet& params) override;
-  void reset(std::size_t cells) override;
-  void apply(const Footprint& footprint) override;
-  double occupancy(std::size_t cell) const override { return map_[cell]; }
-  double native(std::size_t cell) const override { return map_[cell]; }
-  bool filled(std::size_t cell) const override { return map_[cell] > 0.5; }
-  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override;
+  CellLayout layout() const override { return CellLayout::of(BayesCell{prior_}); }
+  void apply(const Footprint& footprint, Grid& grid) const override;
+
+  double occupancyOf(const BayesCell& c) const { return c.p; }
+  double nativeOf(const BayesCell& c) const { return c.p; }
+  bool filledOf(const BayesCell& c) const { return c.p > 0.5; }
 
  private:
   Input input_;
   double prior_ = 0.5;
-  std::vector<double> map_;
 };
 
 // The log method of paper 001 §3.3 as a sum of logs, cut to [cut_min, cut_max].
-class LogRule final : public UpdateRule {
+struct LogCell {
+  double product;  // Emp · Occ; the map value is its log10
+};
+class LogRule final : public RuleOnCells<LogRule, LogCell> {
  public:
   static const RuleInfo& staticInfo();
   const RuleInfo& info() const override { return staticInfo(); }
   void configure(const ParameterSet& params) override;
-  void reset(std::size_t cells) override;
-  void apply(const Footprint& footprint) override;
-  double occupancy(std::size_t cell) const override;
-  double native(std::size_t cell) const override;
-  bool filled(std::size_t cell) const override { return native(cell) > 0.0; }
-  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override;
+  CellLayout layout() const override { return CellLayout::of(LogCell{1.0}); }
+  void apply(const Footprint& footprint, Grid& grid) const override;
+
+  double occupancyOf(const LogCell& c) const;
+  double nativeOf(const LogCell& c) const;
+  bool filledOf(const LogCell& c) const { return nativeOf(c) > 0.0; }
 
  private:
   double cutMin_ = -2.0, cutMax_ = 2.0;
-  std::vector<double> product_;  // Emp · Occ; the map value is its log10
 };
 
 // Clamped log-odds (Thrun; OctoMap's AbstractOccupancyOcTree).
-class LogOddsRule final : public UpdateRule {
+struct LogOddsCell {
+  double odds;  // exp(L): clamping odds is clamping log-odds, without a log per cell
+};
+class LogOddsRule final : public RuleOnCells<LogOddsRule, LogOddsCell> {
  public:
   static const RuleInfo& staticInfo();
   const RuleInfo& info() const override { return staticInfo(); }
   void configure(const ParameterSet& params) override;
-  void reset(std::size_t cells) override;
-  void apply(const Footprint& footprint) override;
-  double occupancy(std::size_t cell) const override;
-  double native(std::size_t cell) const override;
-  bool filled(std::size_t cell) const override { return odds_[cell] > 1.0; }
-  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override;
+  CellLayout layout() const override { return CellLayout::of(LogOddsCell{priorOdds_}); }
+  void apply(const Footprint& footprint, Grid& grid) const override;
+
+  double occupancyOf(const LogOddsCell& c) const;
+  double nativeOf(const LogOddsCell& c) const;
+  bool filledOf(const LogOddsCell& c) const { return c.odds > 1.0; }
 
  private:
   double priorOdds_ = 1.0, minOdds_ = 0.0, maxOdds_ = 0.0;
-  std::vector<double> odds_;  // exp(L): clamping odds is clamping log-odds, without a log per cell
 };
 
 // HIMM's histogram (paper 000 §2.2): integer certainty values.
-class HimmRule final : public UpdateRule {
+struct HimmCell {
+  std::uint8_t cv;
+};
+class HimmRule final : public RuleOnCells<HimmRule, HimmCell> {
  public:
   static const RuleInfo& staticInfo();
   const RuleInfo& info() const override { return staticInfo(); }
   void configure(const ParameterSet& params) override;
-  void reset(std::size_t cells) override;
-  void apply(const Footprint& footprint) override;
-  double occupancy(std::size_t cell) const override { return cv_[cell] / double(cvMax_); }
-  double native(std::size_t cell) const override { return cv_[cell]; }
-  bool filled(std::size_t cell) const override { return cv_[cell] > 0; }
-  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override;
-  std::uint8_t level(std::size_t cell) const override { return cv_[cell]; }
+  CellLayout layout() const override { return CellLayout::of(HimmCell{0}); }
+  void apply(const Footprint& footprint, Grid& grid) const override;
+
+  double occupancyOf(const HimmCell& c) const { return c.cv / double(cvMax_); }
+  double nativeOf(const HimmCell& c) const { return c.cv; }
+  bool filledOf(const HimmCell& c) const { return c.cv > 0; }
+  std::uint8_t levelOf(const HimmCell& c) const { return c.cv; }
 
  private:
   int increment_ = 3, decrement_ = 1, cvMax_ = 15;
-  std::vector<std::uint8_t> cv_;
 };
 
 // Dempster–Shafer evidence combination over {occupied, empty} (Murphy 2000 §11.4).
-class DempsterShaferRule final : public UpdateRule {
+struct DempsterShaferCell {
+  double occ, emp;  // m(unknown) = 1 − both; side by side, as every update reads both
+};
+class DempsterShaferRule final : public RuleOnCells<DempsterShaferRule, DempsterShaferCell> {
  public:
   static const RuleInfo& staticInfo();
   const RuleInfo& info() const override { return staticInfo(); }
   void configure(const ParameterSet& params) override;
-  void reset(std::size_t cells) override;
-  void apply(const Footprint& footprint) override;
-  double occupancy(std::size_t cell) const override;
-  double native(std::size_t cell) const override { return mass_[cell].occ - mass_[cell].emp; }
-  bool filled(std::size_t cell) const override { return mass_[cell].occ > mass_[cell].emp; }
-  void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const override;
+  CellLayout layout() const override { return CellLayout::of(DempsterShaferCell{0.0, 0.0}); }
+  void apply(const Footprint& footprint, Grid& grid) const override;
 
- private:
-  // m(unknown) = 1 − both. Side by side, so one cell's update touches one cache line.
-  struct Masses {
-    double occ = 0.0, emp = 0.0;
-  };
-  std::vector<Masses> mass_;
+  double occupancyOf(const DempsterShaferCell& c) const;
+  double nativeOf(const DempsterShaferCell& c) const { return c.occ - c.emp; }
+  bool filledOf(const DempsterShaferCell& c) const { return c.occ > c.emp; }
 };
 
 }  // namespace sg

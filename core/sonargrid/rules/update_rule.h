@@ -1,14 +1,19 @@
 #pragma once
-// An update rule owns the grid's storage and says how a reading's evidence enters a cell
-// (notes/models-and-metrics.md, "Update rules"). Every rule yields p(occupied), its own native
-// value, the 16 levels and a "filled" flag, so views and metrics need not know which rule ran.
+// An update rule says how a reading's evidence enters a cell (docs/models.md, "Update rules"): it
+// declares what it keeps per cell and the value of a cell nobody has seen, and folds footprints
+// into a Grid made with that layout; the grid owns the cells (grid.h). Every rule yields
+// p(occupied), its own native value, the 16 levels and a "filled" flag, so views and metrics need
+// not know which rule ran.
 
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "sonargrid/footprint.h"
+#include "sonargrid/grid.h"
 #include "sonargrid/occupancy_map.h"
 #include "sonargrid/parameters.h"
 
@@ -43,43 +48,91 @@ class UpdateRule {
 
   virtual const RuleInfo& info() const = 0;
   virtual void configure(const ParameterSet& params) = 0;
-  // Clears the layers to "nothing known" for a grid of `cells` cells.
-  virtual void reset(std::size_t cells) = 0;
-  // Folds one reading's footprint into the layers. A rule updates each cell of the footprint from
-  // that cell's evidence alone (and from totals(), below): the mapper relies on it to give a rule
-  // the rows of one footprint in parts, from several threads at once, never the same cell twice.
-  virtual void apply(const Footprint& footprint) = 0;
+  // What the rule keeps per cell, and its value in a cell nobody has seen (as configured).
+  virtual CellLayout layout() const = 0;
+  // Folds one reading's footprint into the cells of `grid`, a grid made with layout(). A rule
+  // updates each cell of the footprint from that cell's evidence alone (and from totals(), below):
+  // the mapper relies on it to give a rule the rows of one footprint in parts, from several threads
+  // at once, never the same cell twice.
+  virtual void apply(const Footprint& footprint, Grid& grid) const = 0;
   // Whether apply() uses FootprintTotals (then the mapper works them out before giving it parts).
   virtual bool needsTotals() const { return false; }
   // Folds part of a footprint (some of its rows), given the totals of the whole footprint.
-  virtual void applyPart(const Footprint& part, const FootprintTotals& /*totals*/) { apply(part); }
+  virtual void applyPart(const Footprint& part, const FootprintTotals& /*totals*/,
+                         Grid& grid) const {
+    apply(part, grid);
+  }
 
-  virtual double occupancy(std::size_t cell) const = 0;  // p(occupied) in [0, 1]
-  virtual double native(std::size_t cell) const = 0;
-  virtual bool filled(std::size_t cell) const = 0;  // occupied evidence beats free evidence
-  virtual std::uint8_t level(std::size_t cell) const { return levelOfProbability(occupancy(cell)); }
-  // Cells [begin, end) of the four layers of `map` (already sized to the grid), from the four
-  // functions above. Each rule overrides it with writeLayersOf(*this, ...) so that the per-cell
-  // calls are inlined: a re-map's snapshot is 4 × 200 000 virtual calls otherwise, several ms of a
-  // slider's latency. Disjoint ranges may be written from several threads at once.
-  virtual void writeLayers(OccupancyMap& map, std::size_t begin, std::size_t end) const;
+  virtual double occupancy(const Grid& grid, std::size_t cell) const = 0;  // p(occupied), [0, 1]
+  virtual double native(const Grid& grid, std::size_t cell) const = 0;
+  virtual bool filled(const Grid& grid, std::size_t cell) const = 0;  // occupied beats free
+  virtual std::uint8_t level(const Grid& grid, std::size_t cell) const = 0;
+  // Cells [begin, end) of the four layers of `map` (already sized to the grid) from the four
+  // functions above, with the per-cell calls inlined (RuleOnCells): a re-map's snapshot is 4 × 200
+  // 000 virtual calls otherwise, several ms of a slider's latency. Disjoint ranges may be written
+  // from several threads at once.
+  virtual void writeLayers(const Grid& grid, OccupancyMap& map, std::size_t begin,
+                           std::size_t end) const = 0;
 };
 
-// The body of every rule's writeLayers(): Rule is the final class, so the compiler makes its calls
-// direct and inlines them.
-template <class Rule>
-void writeLayersOf(const Rule& rule, OccupancyMap& map, std::size_t begin, std::size_t end) {
-  double* const probability = map.probability.data();
-  double* const native = map.native.data();
-  std::uint8_t* const level = map.level.data();
-  std::uint8_t* const filled = map.filled.data();
-  for (std::size_t i = begin; i < end; ++i) {
-    probability[i] = rule.occupancy(i);
-    native[i] = rule.native(i);
-    level[i] = rule.level(i);
-    filled[i] = rule.filled(i) ? 1 : 0;
+// The base of every rule: `Rule` (the final class) keeps one value of each of `Cells` per cell,
+// plane by plane in that order (CellLayout), and says what a cell means through occupancyOf(),
+// nativeOf() and filledOf() (and levelOf(), which defaults to the level of the probability), each
+// given the cell's value in every plane. This class gives UpdateRule's per-cell reads and
+// writeLayers() from them, with direct, inlined calls.
+template <class Rule, class... Cells>
+class RuleOnCells : public UpdateRule {
+ public:
+  double occupancy(const Grid& grid, std::size_t cell) const final {
+    return at(grid, cell, [this](const Cells&... c) { return self().occupancyOf(c...); });
   }
-}
+  double native(const Grid& grid, std::size_t cell) const final {
+    return at(grid, cell, [this](const Cells&... c) { return self().nativeOf(c...); });
+  }
+  bool filled(const Grid& grid, std::size_t cell) const final {
+    return at(grid, cell, [this](const Cells&... c) { return self().filledOf(c...); });
+  }
+  std::uint8_t level(const Grid& grid, std::size_t cell) const final {
+    return at(grid, cell, [this](const Cells&... c) { return self().levelOf(c...); });
+  }
+  std::uint8_t levelOf(const Cells&... c) const {
+    return levelOfProbability(self().occupancyOf(c...));
+  }
+
+  void writeLayers(const Grid& grid, OccupancyMap& map, std::size_t begin,
+                   std::size_t end) const final {
+    writeLayersOf(grid, map, begin, end, std::index_sequence_for<Cells...>{});
+  }
+
+ private:
+  const Rule& self() const { return static_cast<const Rule&>(*this); }
+
+  template <class Fn, std::size_t... Plane>
+  static auto atPlanes(const Grid& grid, std::size_t cell, Fn&& fn, std::index_sequence<Plane...>) {
+    return fn(grid.cells<Cells>(Plane)[cell]...);
+  }
+  template <class Fn>
+  static auto at(const Grid& grid, std::size_t cell, Fn&& fn) {
+    return atPlanes(grid, cell, fn, std::index_sequence_for<Cells...>{});
+  }
+
+  template <std::size_t... Plane>
+  void writeLayersOf(const Grid& grid, OccupancyMap& map, std::size_t begin, std::size_t end,
+                     std::index_sequence<Plane...>) const {
+    const std::tuple<const Cells*...> planes{grid.cells<Cells>(Plane)...};
+    double* const probability = map.probability.data();
+    double* const native = map.native.data();
+    std::uint8_t* const level = map.level.data();
+    std::uint8_t* const filled = map.filled.data();
+    const Rule& rule = self();
+    for (std::size_t i = begin; i < end; ++i) {
+      probability[i] = rule.occupancyOf(std::get<Plane>(planes)[i]...);
+      native[i] = rule.nativeOf(std::get<Plane>(planes)[i]...);
+      level[i] = rule.levelOf(std::get<Plane>(planes)[i]...);
+      filled[i] = rule.filledOf(std::get<Plane>(planes)[i]...) ? 1 : 0;
+    }
+  }
+};
 
 std::vector<std::string> updateRuleNames();
 std::unique_ptr<UpdateRule> makeUpdateRule(const std::string& name);  // nullptr when unknown

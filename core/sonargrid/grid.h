@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The grid's storage: its limits (GridSpec) and the update rule's state for every cell, plus which
+// cells any reading wrote and which rows changed since the last snapshot (docs/models.md, "Batch,
+// incremental and live mapping"; the storage / limits / inserter split of Cartographer's Grid2D,
+// MapLimits and range data inserter). The grid knows nothing of what its cells mean: the rule
+// declares their layout and the value of a cell nobody has seen, and is the only one to read or
+// write them.
+//
+// A grid can grow to cover new readings. It grows by whole cells (the origin moves by a whole
+// number of cells), every cell keeps its value at its world position, and the new cells are
+// unknown and unobserved. It grows with slack, so a robot that drives on a little at a time makes
+// it reallocate a logarithmic number of times, not per scan.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <new>
+#include <stdexcept>
+#include <type_traits>
+#include <vector>
+
+#include "sonargrid/footprint.h"
+#include "sonargrid/grid_spec.h"
+
+namespace sg {
+
+// A grid that cannot be made: no cells at all. (Too many cells is GridLimitError, grid_spec.h.)
+class GridError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// What a rule keeps per cell, in one or more planes: each plane holds one value of a trivially
+// copyable type per cell, and says its value in a cell nobody has seen. Parts of a cell's state
+// that a reading writes one at a time go in separate planes, so that a plane's cache lines hold
+// more of the cells a footprint touches (probability addition: a cone's cell gets free or occupied
+// evidence, seldom both); parts always read and written together go in one (Dempster–Shafer).
+class CellLayout {
+ public:
+  static constexpr std::size_t kMaxPlanes = 4;
+  static constexpr std::size_t kMaxBytes = 32;   // of one plane's value
+  static constexpr std::size_t kAlignment = 64;  // of each plane's storage: a cache line
+
+  CellLayout() = default;  // no planes
+
+  // One plane per argument, its type and its unknown value.
+  template <class... Cells>
+  static CellLayout of(const Cells&... unknown) {
+    static_assert(sizeof...(Cells) >= 1 && sizeof...(Cells) <= kMaxPlanes);
+    CellLayout layout;
+    (layout.add(unknown), ...);
+    return layout;
+  }
+
+  std::size_t planes() const { return count_; }
+  std::size_t bytes(std::size_t plane) const { return planes_[plane].bytes; }
+  const std::byte* unknown(std::size_t plane) const { return planes_[plane].unknown.data(); }
+  template <class Cell>
+  bool holds(std::size_t plane) const {
+    return plane < count_ && planes_[plane].type == &typeTag<Cell>;
+  }
+
+ private:
+  // One address per cell type: which type a plane was made for, without RTTI.
+  template <class Cell>
+  static constexpr char typeTag = 0;
+
+  template <class Cell>
+  void add(const Cell& unknown) {
+    static_assert(std::is_trivially_copyable_v<Cell>);
+    static_assert(sizeof(Cell) <= kMaxBytes && alignof(Cell) <= kAlignment);
+    Plane& p = planes_[count_++];
+    p.type = &typeTag<Cell>;
+    p.bytes = sizeof(Cell);
+    std::memcpy(p.unknown.data(), &unknown, sizeof(Cell));
+  }
+
+  struct Plane {
+    const void* type = nullptr;
+    std::size_t bytes = 0;
+    std::array<std::byte, kMaxBytes> unknown{};
+  };
+  std::array<Plane, kMaxPlanes> planes_{};
+  std::size_t count_ = 0;
+};
+
+// Rows [begin, end) of a grid; empty when begin == end.
+struct RowBand {
+  int begin = 0;
+  int end = 0;
+  bool empty() const { return begin >= end; }
+  bool operator==(const RowBand&) const = default;
+};
+
+class Grid {
+ public:
+  // A grid of no cells, to be given a real one by assignment.
+  Grid() = default;
+  // Every cell unknown and unobserved, every row dirty. Throws GridError for an empty grid. (Its
+  // size is the caller's to bound, as GridSpec::covering() does; growth checks kMaxGridCells.)
+  Grid(const GridSpec& spec, const CellLayout& layout);
+  Grid(Grid&&) noexcept = default;
+  Grid& operator=(Grid&&) noexcept = default;
+
+  const GridSpec& spec() const { return spec_; }
+  const CellLayout& layout() const { return layout_; }
+  std::size_t cellCount() const { return spec_.cellCount(); }
+
+  // The cells of one plane, row-major as GridSpec::linear() numbers them, typed as the rule
+  // declared them. Throws std::logic_error when the layout has no such plane of type Cell (a rule
+  // given another rule's grid).
+  template <class Cell>
+  Cell* cells(std::size_t plane = 0) {
+    checkType(layout_.holds<Cell>(plane));
+    return std::launder(reinterpret_cast<Cell*>(planes_[plane].get()));
+  }
+  template <class Cell>
+  const Cell* cells(std::size_t plane = 0) const {
+    checkType(layout_.holds<Cell>(plane));
+    return std::launder(reinterpret_cast<const Cell*>(planes_[plane].get()));
+  }
+
+  // Whether at least one reading wrote the cell.
+  bool observed(std::size_t cell) const { return (marks_[cell] & kObserved) != 0; }
+  // observed() of cells [begin, end) as 0 or 1 into out[begin, end) (OccupancyMap::observed).
+  void copyObserved(std::size_t begin, std::size_t end, std::uint8_t* out) const;
+
+  // Every cell unknown and unobserved again (the spec stays); every row dirty.
+  void clear();
+
+  // Marks the footprint's cells observed and written since the last snapshot (so their rows are
+  // dirty); the rule writes the values. One store per cell, as marking them observed alone costs.
+  // Several threads may mark footprints whose cells lie in disjoint rows at once.
+  void markWritten(const Footprint& footprint) {
+    // Four at a time: the loop is a load and a store per cell, and its own overhead was a third.
+    const CellEvidence* c = footprint.cells.data();
+    const CellEvidence* const end = c + footprint.cells.size();
+    std::uint8_t* const marks = marks_.data();
+    constexpr std::uint8_t kBoth = kObserved | kWritten;
+    for (; end - c >= 4; c += 4) {
+      marks[c[0].cell] = kBoth;
+      marks[c[1].cell] = kBoth;
+      marks[c[2].cell] = kBoth;
+      marks[c[3].cell] = kBoth;
+    }
+    for (; c != end; ++c) marks[c->cell] = kBoth;
+  }
+
+  // Whether every cell of the world box [lo, hi] is in the grid.
+  bool covers(const Position& lo, const Position& hi) const;
+  // Grows the grid, if it must, until it covers the world box [lo, hi], with slack: a side that
+  // must grow grows by at least half the grid's size along it, unless that would pass
+  // kMaxGridCells. Returns whether the spec changed (then every row is dirty). Throws
+  // GridLimitError when the box needs more than kMaxGridCells cells or is not finite; the grid is
+  // then unchanged.
+  bool growToCover(const Position& lo, const Position& hi);
+
+  // Dirty rows: those written since the last takeDirtyRuns(), or every row after construction,
+  // clear() or growth. Finding them reads a byte per cell (the marks), which is what keeps
+  // markWritten() at one store per cell; a snapshot then computes only the dirty rows' cells.
+  bool rowDirty(int row) const;
+  std::vector<int> dirtyRows() const;
+  // The dirty rows as runs of consecutive rows, lowest first; afterwards no row is dirty.
+  std::vector<RowBand> takeDirtyRuns();
+
+ private:
+  struct AlignedDelete {
+    void operator()(std::byte* p) const {
+      ::operator delete[](p, std::align_val_t{CellLayout::kAlignment});
+    }
+  };
+  using Storage = std::unique_ptr<std::byte[], AlignedDelete>;
+
+  // Cells a box lacks on each side.
+  struct Need {
+    double left, right, bottom, top;
+  };
+  Need need(const Position& lo, const Position& hi) const;
+  static Storage allocate(std::size_t cells, std::size_t bytes);
+  static void checkType(bool matches);
+  // Writes plane `plane`'s unknown value into cells [begin, end) of `storage`.
+  void fillUnknown(std::size_t plane, std::byte* storage, std::size_t begin, std::size_t end) const;
+
+  GridSpec spec_;
+  CellLayout layout_;
+  std::array<Storage, CellLayout::kMaxPlanes> planes_;
+  // Per cell: kObserved once any reading wrote it, kWritten while that is news to a snapshot.
+  static constexpr std::uint8_t kObserved = 1, kWritten = 2;
+  std::vector<std::uint8_t> marks_;
+  bool allDirty_ = true;
+};
+
+}  // namespace sg
