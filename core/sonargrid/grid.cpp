@@ -40,6 +40,12 @@ void Grid::checkType(bool matches) {
 Grid::Grid(const GridSpec& spec, const CellLayout& layout) : spec_(spec), layout_(layout) {
   if (spec.width <= 0 || spec.height <= 0 || !(spec.cellSize > 0.0))
     throw GridError("the grid is empty");
+  // Every grid, not only a log's fitting one (GridSpec::covering), stays within the core's cap.
+  if (cellCount() > static_cast<std::size_t>(kMaxGridCells)) {
+    throw GridLimitError("a grid of " + std::to_string(spec.width) + " x " +
+                         std::to_string(spec.height) + " cells is more than the grid limit of " +
+                         std::to_string(kMaxGridCells) + " cells");
+  }
   for (std::size_t p = 0; p < layout_.planes(); ++p)
     planes_[p] = allocate(cellCount(), layout_.bytes(p));
   marks_.resize(cellCount());

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <thread>
 #include <utility>
 
@@ -41,7 +42,18 @@ Mapper::Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings
   model_->configure(params);
   rule_->configure(params);
   grid_ = Grid(grid, rule_->layout());  // unknown and unobserved
-  tables_ = BeamTables::shared(grid.cellSize, model_->reach(ring_.maxRange));
+  // A log may declare any finite max_range; the cone tables hold 16 × (2r + 1)² entries for a
+  // reach of r cells, so a reach of 1e12 m would be an undefined cast and no memory at all.
+  const double reach = model_->reach(ring_.maxRange);
+  const double reachCells = std::ceil(reach / grid.cellSize);
+  if (!std::isfinite(reachCells) || reachCells > kMaxReachCells) {
+    std::ostringstream msg;
+    msg << "the sonar reaches " << reach << " m (max_range " << ring_.maxRange << " m), "
+        << reachCells << " cells of " << grid.cellSize << " m; the limit is " << kMaxReachCells
+        << " cells: check the log's max_range or map with larger cells";
+    throw MapperError(msg.str());
+  }
+  tables_ = BeamTables::shared(grid.cellSize, reach);
 }
 
 void Mapper::reset() {

@@ -26,6 +26,10 @@
 
 namespace sg {
 
+// The farthest a sonar may reach, in cells (the cone tables' radius): 10 m at 5 mm cells, whose
+// 16 tables of (2r + 1)² entries take some 2 GiB.
+inline constexpr double kMaxReachCells = 2048;
+
 class MapperError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

@@ -412,6 +412,27 @@ void TstMapper::errors() {
   QVERIFY_THROWS_EXCEPTION(ParameterError, p.set("epsilon", -1.0));
   QVERIFY_THROWS_EXCEPTION(ParameterError, p.set("epsilon", std::nan("")));
   QVERIFY_THROWS_EXCEPTION(ParameterError, p.set("p4", 0.9));  // not a parameter of hpf × bayes
+
+  // A grid the caller made itself is held to the core's cap too: 20 000² = 4e8 cells > 2e8,
+  // refused before any cell is allocated.
+  GridSpec huge = grid;
+  huge.width = 20000;
+  huge.height = 20000;
+  s.rule = "bayes";
+  QVERIFY_THROWS_EXCEPTION(GridLimitError, Mapper(d.ring, huge, s));
+  // A log may declare any finite max_range; one whose cone tables would need more than
+  // kMaxReachCells cells of radius is refused with a message, not an undefined cast: 1e12 m at
+  // 5 cm is 2e13 cells; 150 m at 5 cm (3000 cells, plus HPF's reach) is over 2048 too.
+  for (const double maxRange : {1e12, 150.0}) {
+    SonarRing far = d.ring;
+    far.maxRange = maxRange;
+    try {
+      Mapper m3(far, grid, s);
+      QFAIL("a reach beyond the table limit was accepted");
+    } catch (const MapperError& e) {
+      QVERIFY2(std::string(e.what()).find("the limit is 2048 cells") != std::string::npos, e.what());
+    }
+  }
 }
 
 void TstMapper::cancel() {
