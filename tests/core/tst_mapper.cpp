@@ -430,7 +430,8 @@ void TstMapper::errors() {
       Mapper m3(far, grid, s);
       QFAIL("a reach beyond the table limit was accepted");
     } catch (const MapperError& e) {
-      QVERIFY2(std::string(e.what()).find("the limit is 2048 cells") != std::string::npos, e.what());
+      QVERIFY2(std::string(e.what()).find("the limit is 2048 cells") != std::string::npos,
+               e.what());
     }
   }
 }
