@@ -641,7 +641,7 @@ class TstArcos : public QObject {
     link.run(0.4, true);
     QVERIFY2(link.lostReason.starts_with("no packet from the robot"), link.lostReason.c_str());
     QVERIFY(!link.session.isOpen());
-    QCOMPARE(link.session.counters().lostConnections, std::uint64_t{1});
+    QCOMPARE(link.session.counters().timeouts, std::uint64_t{1});
   }
 
   // A robot that never answers: the handshake starts over every second, and gives up after 5.

@@ -57,7 +57,7 @@ void ClientSession::disconnected() {
 
 void ClientSession::lose(const std::string& reason) {
   state_ = State::Idle;
-  ++counters_.lostConnections;
+  ++counters_.timeouts;
   listener_.onLost(reason);
 }
 

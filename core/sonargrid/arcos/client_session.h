@@ -35,9 +35,10 @@ struct LinkCounters {
   std::uint64_t malformedServerInfo = 0;
   std::uint64_t otherPackets = 0;  // valid frames of IDs the client does not read
   std::uint64_t handshakes = 0;    // connections that reached OPEN
-  std::uint64_t lostConnections = 0;
-  std::uint64_t attempts = 0;    // connections tried (counted by the link)
-  std::uint64_t reconnects = 0;  // handshakes after the first (counted by the link)
+  std::uint64_t timeouts = 0;      // connections given up: the robot fell silent or never answered
+  std::uint64_t lostConnections = 0;  // open connections that ended (counted by the link)
+  std::uint64_t attempts = 0;         // connections tried (counted by the link)
+  std::uint64_t reconnects = 0;       // handshakes after the first (counted by the link)
   std::uint64_t pulses = 0;
 
   // Every malformed or corrupt packet, whatever its kind.

@@ -114,6 +114,7 @@ void RobotLink::onLost(const std::string& reason) {
 void RobotLink::endConnection(const QString& reason) {
   dropTransport();
   if (wasOpen_) {
+    ++session_.counters().lostConnections;
     emit disconnected(reason);
   } else {
     emit error(QStringLiteral("cannot connect to %1: %2").arg(fromStd(address_.text()), reason));
