@@ -10,7 +10,30 @@ namespace sg::live {
 Wander::Wander(SonarRing ring, WanderSettings settings)
     : ring_(std::move(ring)), settings_(settings) {}
 
-std::pair<double, double> Wander::command(std::span<const double> ranges) {
+std::pair<double, double> Wander::command(std::span<const double> ranges, const Pose2D& odometry,
+                                          double time) {
+  if (time < escapeUntil_) {
+    const bool backing = time < escapeUntil_ - settings_.backOff;
+    return backing ? std::pair{-settings_.slowSpeed, 0.0}
+                   : std::pair{0.0, escapeTurn_ * settings_.turnRate};
+  }
+  const std::pair<double, double> c = avoid(ranges);
+  if (c.first <= 0.0 || progressTime_ < 0.0 ||
+      (odometry.position - progressFrom_).norm() >= settings_.stuckDistance) {
+    progressFrom_ = odometry.position;
+    progressTime_ = time;
+    return c;
+  }
+  if (time - progressTime_ < settings_.stuckAfter) return c;
+  // Told to drive, not moving: back off, then turn away from the nearer side.
+  escapeTurn_ = c.second >= 0.0 ? 1 : -1;
+  escapeUntil_ = time + 2.0 * settings_.backOff;
+  progressTime_ = -1.0;
+  turning_ = 0;
+  return {-settings_.slowSpeed, 0.0};
+}
+
+std::pair<double, double> Wander::avoid(std::span<const double> ranges) {
   const double far = ring_.maxRange;
   double front = far;
   double left = far;
