@@ -78,6 +78,9 @@ int runRobot(Arguments& args) {
     throw UsageError("--robot expects " + arcos::robotPresetNames() + ", got '" + robotName + "'");
   }
   settings.robot = *robot;
+  // The watchdog guards the link, which runs in real time: a client that sends PULSE every half
+  // second must keep a robot going however fast its clock runs.
+  settings.watchdog *= timeScale;
   settings.server = {"SonarGridSim", "Pioneer", robotName == "amigobot" ? "amigo" : "p3dx"};
   if (teleop && (routeName || routeFile || stops != 0))
     throw UsageError(

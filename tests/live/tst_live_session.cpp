@@ -369,6 +369,17 @@ class TstLiveSession : public QObject {
     QCOMPARE(firstDone.json["link"].toObject()["reconnects"].toInteger(), 0);
   }
 
+  // A log that cannot be created ends the recording at the first connection: exit 1, naming it.
+  void unwritableLog() {
+    Robot robot;
+    QVERIFY2(robot.start({}), robot.error.constData());
+    const Finished rec = run({"record", "--connect", robot.address(), "--out",
+                              "/nonexistent-dir/x.sglog", "--duration", "5"});
+    QCOMPARE(robot.stop(), 0);
+    QCOMPARE(rec.code, 1);
+    QVERIFY2(rec.err.contains("cannot write '/nonexistent-dir/x.sglog'"), rec.err.constData());
+  }
+
   void badArguments_data() {
     QTest::addColumn<QStringList>("args");
     QTest::addColumn<QString>("message");
