@@ -680,6 +680,13 @@ class TstArcos : public QObject {
     QVERIFY(r.counters().stalls > 0);
     QVERIFY(r.truePose().x() < 7.0 - radius);
     QVERIFY(r.truePose().x() >= 7.0 - radius - 0.005);
+    // SETV 100 mm/s: a later VEL 500 drives at 100 mm/s (half a second: 5 cm back).
+    link.session.setSpeedLimits(0.1, 1.0, link.t);
+    link.session.setVelocity(-0.5, 0.0, link.t);
+    const double before5 = r.truePose().x();
+    link.run(0.5);
+    QVERIFY(std::abs(r.truePose().x() - (before5 - 0.05)) <= 0.1 * 0.02);
+    link.session.setSpeedLimits(1.2, 1.0, link.t);
     // Unknown command 99: ignored, the robot keeps streaming.
     const std::size_t before = link.served.size();
     link.session.sendCommand(arcos::encodeCommand(99, 1), link.t);

@@ -214,6 +214,12 @@ void ClientSession::setWheelVelocities(double leftMetresPerSecond, double rightM
        now);
 }
 
+void ClientSession::setSpeedLimits(double metresPerSecond, double radiansPerSecond, double now) {
+  if (state_ != State::Open) return;
+  send(encodeCommand(command::kSetV, std::abs(clampedUnits(metresPerSecond * 1000.0))), now);
+  send(encodeCommand(command::kSetRv, std::abs(clampedUnits(radToDeg(radiansPerSecond)))), now);
+}
+
 void ClientSession::stop(double now) {
   if (state_ == State::Open) send(encodeCommand(command::kStop), now);
 }

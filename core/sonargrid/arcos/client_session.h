@@ -94,6 +94,8 @@ class ClientSession {
   void setVelocity(double metresPerSecond, double radiansPerSecond, double now);
   void setWheelVelocities(double leftMetresPerSecond, double rightMetresPerSecond, double now);
   void stop(double now);
+  // SETV (mm/s) and SETRV (deg/s): the robot's own limits on later velocity commands.
+  void setSpeedLimits(double metresPerSecond, double radiansPerSecond, double now);
   void sendCommand(std::span<const std::uint8_t> bytes, double now);
   void close(double now);
 

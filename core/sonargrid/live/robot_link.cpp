@@ -166,6 +166,10 @@ void RobotLink::setWheelVelocities(double leftMetresPerSecond, double rightMetre
   session_.setWheelVelocities(leftMetresPerSecond, rightMetresPerSecond, now());
 }
 
+void RobotLink::setSpeedLimits(double metresPerSecond, double radiansPerSecond) {
+  session_.setSpeedLimits(metresPerSecond, radiansPerSecond, now());
+}
+
 void RobotLink::stop() {
   session_.stop(now());
 }

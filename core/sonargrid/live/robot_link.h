@@ -62,6 +62,8 @@ class RobotLink : public QObject, private arcos::ClientSession::Listener {
   void setVelocity(double metresPerSecond, double radiansPerSecond);
   // Wheel velocities (m/s): VEL2.
   void setWheelVelocities(double leftMetresPerSecond, double rightMetresPerSecond);
+  // The robot's limits on later velocity commands: SETV and SETRV.
+  void setSpeedLimits(double metresPerSecond, double radiansPerSecond);
   void stop();
 
  signals:
