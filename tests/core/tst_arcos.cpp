@@ -625,6 +625,31 @@ class TstArcos : public QObject {
     QCOMPARE(link.session.counters().errors(), std::uint64_t{0});
   }
 
+  // A client that only listened leaves a self-driving robot on its route when it closes; one
+  // that drove it stops it first.
+  void closeLeavesARouteAlone() {
+    const sg::Pose2D start(1.0, 2.5, 0.0);
+    const sg::Trajectory path(start, {sg::PathPiece{5.0, 0.0, 0.0}}, sg::DriveLimits{});
+    for (const bool drive : {false, true}) {
+      arcos::VirtualRobot r(room(), start, arcos::RoutePlan{path, {}, 0.0}, {});
+      MemoryLink link(r);
+      link.session.start(0.0);
+      link.run(1.0);
+      QVERIFY(r.truePose().x() > 1.2);  // on its way along the route at 0.3 m/s
+      if (drive) link.session.setVelocity(0.1, 0.0, link.t);
+      link.run(0.1);
+      link.session.close(link.t);
+      link.run(0.1);
+      QVERIFY(r.closeRequested());
+      QCOMPARE(r.clientDriving(), drive);
+      const double x = r.truePose().x();
+      Bytes none;
+      r.advanceTo(link.t + 1.0, none);
+      // Still driving its route at 0.3 m/s, or stopped.
+      QCOMPARE(r.truePose().x() > x + 0.25, !drive);
+    }
+  }
+
   // Nothing sent for half a second: PULSE. Nothing heard for two: the connection is lost.
   void keepAliveAndLoss() {
     arcos::VirtualRobot r(room(), sg::Pose2D(3.5, 2.5, 0.0), std::nullopt, {});

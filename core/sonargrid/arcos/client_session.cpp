@@ -159,6 +159,7 @@ void ClientSession::onServerInfo(const Packet& p, double now) {
   server_ = *info;
   robot_ = chooseRobot(*info, valid);
   tracker_.emplace(*robot_);
+  drove_ = false;
   state_ = State::Open;
   ++counters_.handshakes;
   send(encodeCommand(command::kOpen, 1), now);
@@ -203,6 +204,7 @@ void ClientSession::sendCommand(std::span<const std::uint8_t> bytes, double now)
 
 void ClientSession::setVelocity(double metresPerSecond, double radiansPerSecond, double now) {
   if (state_ != State::Open) return;
+  drove_ = true;
   send(encodeCommand(command::kVel, clampedUnits(metresPerSecond * 1000.0)), now);
   send(encodeCommand(command::kRVel, clampedUnits(radToDeg(radiansPerSecond))), now);
 }
@@ -210,6 +212,7 @@ void ClientSession::setVelocity(double metresPerSecond, double radiansPerSecond,
 void ClientSession::setWheelVelocities(double leftMetresPerSecond, double rightMetresPerSecond,
                                        double now) {
   if (state_ != State::Open) return;
+  drove_ = true;
   send(encodeVel2(leftMetresPerSecond * 1000.0, rightMetresPerSecond * 1000.0, robot_->vel2Divisor),
        now);
 }
@@ -226,7 +229,7 @@ void ClientSession::stop(double now) {
 
 void ClientSession::close(double now) {
   if (state_ == State::Open) {
-    send(encodeCommand(command::kStop), now);
+    if (drove_) send(encodeCommand(command::kStop), now);
     send(encodeCommand(command::kClose), now);
   }
   state_ = State::Idle;

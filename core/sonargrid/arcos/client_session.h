@@ -90,7 +90,9 @@ class ClientSession {
   void disconnected();
 
   // When open (ignored otherwise): VEL (mm/s) and RVEL (deg/s) from metres and radians per second;
-  // STOP; any encoded command; STOP and CLOSE, after which the session is idle.
+  // STOP; any encoded command; CLOSE (after STOP if this session sent a motion command: a robot
+  // left to drive itself, like the virtual robot on its route, is not taken over), after which
+  // the session is idle.
   void setVelocity(double metresPerSecond, double radiansPerSecond, double now);
   void setWheelVelocities(double leftMetresPerSecond, double rightMetresPerSecond, double now);
   void stop(double now);
@@ -129,6 +131,7 @@ class ClientSession {
   double lastSent_ = 0.0;
   double lastReceived_ = 0.0;
   bool closeSent_ = false;  // CLOSE sent to a robot still streaming to an earlier client
+  bool drove_ = false;      // this connection sent a motion command
 };
 
 }  // namespace sg::arcos

@@ -42,7 +42,8 @@ class RobotLink : public QObject, private arcos::ClientSession::Listener {
 
   // Starts connecting, and keeps reconnecting until close().
   void open();
-  // Stops the robot, closes the session (STOP, CLOSE) and the connection; no reconnect follows.
+  // Closes the session (STOP if this link sent motion commands, then CLOSE) and the connection;
+  // no reconnect follows.
   void close();
 
   const LinkAddress& address() const { return address_; }
