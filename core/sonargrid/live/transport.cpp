@@ -45,6 +45,8 @@ class TcpTransport final : public Transport {
  private:
   void fail(const QString& reason) {
     if (done_) return;
+    // Bytes that came before the end are the robot's last packets: deliver them first.
+    if (socket_.bytesAvailable() > 0) emit readyRead();
     done_ = true;
     emit failed(reason);
   }
@@ -103,6 +105,7 @@ class SerialTransport final : public Transport {
  private:
   void fail(const QString& reason) {
     if (done_) return;
+    if (port_.isOpen() && port_.bytesAvailable() > 0) emit readyRead();
     done_ = true;
     emit failed(reason);
   }
