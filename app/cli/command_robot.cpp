@@ -26,9 +26,20 @@
 namespace sg::cli {
 namespace {
 
-// Without --duration a self-driving route is planned this far ahead (out and back); the robot
-// then stands at the end of it.
-constexpr double kRouteHorizon = 24 * 3600.0;
+// One lap of a repeating route: the route out, back, and a turn on the spot into the starting
+// heading, so that the lap ends where and as it began and can be driven over and over.
+Trajectory outAndBackLap(const std::optional<Pose2D>& start, const std::vector<Position>& waypoints,
+                         SimulationSettings settings) {
+  settings.duration.reset();
+  const Trajectory out = planTrajectory(start, waypoints, settings);
+  // A duration just past the route out makes planTrajectory add exactly the leg back.
+  settings.duration = out.duration() + 1e-6;
+  const Trajectory lap = planTrajectory(start, waypoints, settings);
+  std::vector<PathPiece> pieces = lap.pieces();
+  const double turn = wrapAngle(lap.start().heading - lap.end().heading);
+  if (turn != 0.0) pieces.push_back(PathPiece{0.0, 0.0, turn});
+  return Trajectory(lap.start(), std::move(pieces), settings.limits);
+}
 // Stop-and-scan: how long the robot stands at each stop (about three turns of a Pioneer's ring).
 constexpr double kStopHold = 1.0;
 
@@ -114,9 +125,9 @@ int runRobot(Arguments& args) {
   Pose2D start;
   try {
     if (!routeFile) waypoints = routeWaypoints(sim.route, world, sim);
-    if (sim.route != RouteKind::StopAndScan)
-      sim.duration = duration > 0.0 ? duration : kRouteHorizon;
-    const Trajectory path = planTrajectory(startPose(map), waypoints, sim);
+    const bool repeat = sim.route != RouteKind::StopAndScan;
+    const Trajectory path = repeat ? outAndBackLap(startPose(map), waypoints, sim)
+                                   : planTrajectory(startPose(map), waypoints, sim);
     start = path.start();
     if (!teleop) {
       const RobotBody body = robotBody(settings.robot.ring);
@@ -126,7 +137,7 @@ int runRobot(Arguments& args) {
                          "), inside the " + robotName + "'s radius of " + fixed(body.radius, 3) +
                          " m: give a route that keeps clear (--route-file)");
       }
-      plan = arcos::RoutePlan{path, {}, 0.0};
+      plan = arcos::RoutePlan{path, {}, 0.0, repeat};
       if (sim.route == RouteKind::StopAndScan) {
         for (const double s : stopDistances(path.length(), sim.stops))
           plan->stops.push_back(path.timeAtDistance(s));

@@ -241,6 +241,40 @@ class TstLiveSession : public QObject {
     QCOMPARE(map.json["readings"].toInteger(), static_cast<qint64>(got.readingCount()));
   }
 
+  // The route is driven out and back over and over, without a jump where one lap ends and the
+  // next begins; --time-scale 50 runs 300 s of it in 6.
+  void routeRepeatsWithoutJumps() {
+    QTemporaryDir dir;
+    const QString serverLog = dir.filePath("server.sglog");
+    Robot robot;
+    QVERIFY2(robot.start({"--time-scale", "50", "--log-out", serverLog}), robot.error.constData());
+    const Finished rec = run({"record", "--connect", robot.address(), "--duration", "6", "--out",
+                              dir.filePath("recorded.sglog"), "--json"});
+    QCOMPARE(robot.stop(), 0);
+    QVERIFY2(rec.code == 0, rec.err.constData());
+    const sg::Dataset sent = load(serverLog);
+    QVERIFY(sent.scans.size() > 1000);
+    QVERIFY(sent.scans.back().time - sent.scans.front().time > 200.0);
+    // Never faster than the route's 0.3 m/s and 45 deg/s (simulator.md), between any two SIPs.
+    const sg::Pose2D start = *sent.scans.front().truth;
+    int returns = 0;
+    bool away = false;
+    for (std::size_t i = 1; i < sent.scans.size(); ++i) {
+      const sg::Pose2D& a = *sent.scans[i - 1].truth;
+      const sg::Pose2D& b = *sent.scans[i].truth;
+      const double dt = sent.scans[i].time - sent.scans[i - 1].time;
+      QVERIFY((b.position - a.position).norm() <= 0.3 * dt + 1e-9);
+      QVERIFY(std::abs(sg::wrapAngle(b.heading - a.heading)) <= sg::degToRad(45.0) * dt + 1e-9);
+      const double fromStart = (b.position - start.position).norm();
+      if (fromStart > 1.0) away = true;
+      if (away && fromStart < 0.05) {
+        ++returns;
+        away = false;
+      }
+    }
+    QVERIFY2(returns >= 2, QByteArray::number(returns));
+  }
+
   // The robot is killed mid-session and started again on the same port: the recorder reports
   // it, reconnects, and its log keeps every reading from before the kill.
   void reconnectsAfterTheRobotIsKilled() {
@@ -251,8 +285,7 @@ class TstLiveSession : public QObject {
     Robot robot1;
     QVERIFY2(robot1.start({"--log-out", first}), robot1.error.constData());
     QProcess record;
-    record.start(kCli, {"record", "--connect", robot1.address(), "--duration", "10", "--out",
-                        recorded, "--json"});
+    record.start(kCli, {"record", "--connect", robot1.address(), "--out", recorded, "--json"});
     QVERIFY(waitForScans(recorded, 25, 10000));
     robot1.kill9();
     QTest::qWait(1000);
@@ -265,6 +298,9 @@ class TstLiveSession : public QObject {
       if (!started) QTest::qWait(200);
     }
     QVERIFY2(started, robot2.error.constData());
+    // The recorder retries after 0.5, 1, 2, 4, 8 s: wait for two seconds of the second session.
+    QVERIFY(waitForScans(recorded, static_cast<int>(atKill.scans.size()) + 20, 30000));
+    ::kill(static_cast<pid_t>(record.processId()), SIGINT);
     const Finished rec = finish(record, 30000);
     QCOMPARE(robot2.stop(), 0);
     QVERIFY2(rec.code == 0, rec.err.constData());

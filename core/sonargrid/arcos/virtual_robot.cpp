@@ -227,6 +227,8 @@ Pose2D VirtualRobot::routePose(double t) const {
     if (tt <= stop) break;
     tt = tt <= stop + route_->hold ? stop : tt - route_->hold;
   }
+  const double lap = route_->path.duration();
+  if (route_->repeat && lap > 0.0) tt = std::fmod(tt, lap);
   return route_->path.poseAt(tt);
 }
 

@@ -37,11 +37,13 @@ struct VirtualRobotSettings {
 };
 
 // How the robot drives itself until a client sends a motion command: a trajectory, with the robot
-// standing still for `hold` seconds at each of `stops` (trajectory times, ascending).
+// standing still for `hold` seconds at each of `stops` (trajectory times, ascending), driven once
+// or, with `repeat`, over and over (a lap that ends as it begins).
 struct RoutePlan {
   Trajectory path;
   std::vector<double> stops;
   double hold = 0.0;
+  bool repeat = false;
 };
 
 struct VirtualRobotCounters {
