@@ -17,7 +17,7 @@
 #include "commands.h"
 #include "signal_watcher.h"
 #include "sonargrid/arcos/virtual_robot.h"
-#include "sonargrid/io/log_error.h"
+#include "sonargrid/base/log_error.h"
 #include "sonargrid/io/sglog_recorder.h"
 #include "sonargrid/live/arcos_server.h"
 #include "sonargrid/reference/reference_json.h"
