@@ -5,7 +5,8 @@ set -euo pipefail
 
 packages=(
   g++ cmake ninja-build                     # toolchain
-  qt6-base-dev                              # Qt 6 Core/Gui/Widgets/Test/OpenGL
+  qt6-base-dev                              # Qt 6 Core/Gui/Widgets/Test/OpenGL/Network
+  qt6-serialport-dev                        # Qt 6 SerialPort (the robot link's serial transport)
   libeigen3-dev                             # poses and geometry
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev  # distance transform, PNG
   nlohmann-json3-dev                        # JSON for the CLI and reference maps

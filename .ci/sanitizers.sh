@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the core, the CLI and their tests with AddressSanitizer + UndefinedBehaviorSanitizer into
-# build-asan/ and runs the core and CLI test suites under them. Any report fails the job.
+# build-asan/ and runs the core, CLI and live-robot test suites under them. Any report fails the job.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
@@ -10,4 +10,4 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSONARGRID_
 cmake --build build-asan -j "$(nproc)"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-ctest --test-dir build-asan -L "core|cli" --output-on-failure -j "$(nproc)"
+ctest --test-dir build-asan -L "core|cli|live" --output-on-failure -j "$(nproc)"

@@ -12,5 +12,7 @@ int runGoodness(Arguments& args);
 int runSimulate(Arguments& args);
 int runReproduce(Arguments& args);
 int runConvert(Arguments& args);
+int runRobot(Arguments& args);
+int runRecord(Arguments& args);
 
 }  // namespace sg::cli

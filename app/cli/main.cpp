@@ -38,6 +38,13 @@ commands:
                              (Markdown, CSV) and figures (PNG) in DIR/PAPER
   convert --in FILE --out FILE [--to sglog|carmen] [--json]
                              rewrite a log as .sglog or CARMEN
+  robot --world WORLD.json [--robot p3dx|amigobot] [--port N] [--bind ADDRESS]
+      [--route in-motion|stop-and-scan|u-turn [--route-file FILE] [--stops N] | --teleop]
+      [--seed N] [--drift on|off] [--duration S] [--time-scale K] [--log-out LOG.sglog]
+                             serve a virtual robot over ARCOS (TCP), one client at a time
+  record --connect tcp://HOST[:PORT]|serial://DEVICE[?baud=N] --out LOG.sglog
+      [--duration S] [--wander] [--robot p3dx|amigobot] [--json]
+                             record a live robot's sonar to a log as it streams
   help                       this text
 
 log flags (every command that reads a log):
@@ -73,6 +80,8 @@ int main(int argc, char** argv) {
     if (command == "simulate") return sg::cli::runSimulate(args);
     if (command == "reproduce") return sg::cli::runReproduce(args);
     if (command == "convert") return sg::cli::runConvert(args);
+    if (command == "robot") return sg::cli::runRobot(args);
+    if (command == "record") return sg::cli::runRecord(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';

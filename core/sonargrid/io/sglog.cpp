@@ -44,6 +44,9 @@ constexpr std::string_view kReading = "r";
 // The closing record: a log cut short exactly at a line ending would otherwise read as a valid,
 // shorter log.
 constexpr std::string_view kEnd = "end";
+// The optional header record of a log written as it was recorded (docs/formats.md, "Streamed
+// logs"): such a log may end without 'end', after any complete line.
+constexpr std::string_view kStreamed = "streamed";
 
 // ---------------------------------------------------------------------------------------------
 // Shared validity rules: the writer refuses exactly what the reader would reject, so that a file
@@ -161,6 +164,10 @@ class Parser : text::LineParser {
       }
       if (key == "sonar") {
         readSonar();
+        continue;
+      }
+      if (key == kStreamed) {
+        readStreamed();
         continue;
       }
       const auto it = std::find(kKeyNames.begin(), kKeyNames.end(), key);
@@ -332,6 +339,15 @@ class Parser : text::LineParser {
     sonarLines_.push_back(lines_.lineNumber());
   }
 
+  void readStreamed() {
+    expectCount(0, "");
+    if (streamedLine_ != 0) {
+      fail(kStreamed, "expected one 'streamed' line, found a second (the first is line " +
+                          std::to_string(streamedLine_) + ")");
+    }
+    streamedLine_ = lines_.lineNumber();
+  }
+
   void finishHeader() {
     for (std::size_t k = 0; k < kKeyCount; ++k) {
       if (keyLine_[k] == 0) {
@@ -350,6 +366,16 @@ class Parser : text::LineParser {
   // scan are skipped with it, so that none lands on the scan before.
   void readBody() {
     while (lines_.next(line_)) {
+      // A streamed log ends wherever its recording stopped: a last line without its line ending
+      // may have been cut anywhere, even where it would still read (a range or a time cut short),
+      // so it is left out, and reported, unless it is the closing 'end'.
+      if (streamedLine_ != 0 && !lines_.lineEnded()) {
+        text::splitFields(line_, fields_);
+        if (fields_.size() == 1 && fields_[0] == kEnd) return;
+        report_.skip(LogError(file_, lines_.lineNumber(), "",
+                              "the recording ends inside this line (cut short); it is left out"));
+        return;
+      }
       try {
         prepareLine();
         if (fields_.size() != 0 && readBodyRecord()) return;
@@ -358,6 +384,7 @@ class Parser : text::LineParser {
         report_.skip(e);
       }
     }
+    if (streamedLine_ != 0) return;
     const LogError truncated(
         file_, 0, "", "truncated: the file ends inside the body (expected a closing 'end' line)");
     if (!lenient_) throw truncated;
@@ -469,15 +496,15 @@ class Parser : text::LineParser {
   std::size_t readingsPerScan_ = 0;
   double lastTime_ = -std::numeric_limits<double>::infinity();
   std::size_t skippedScanLine_ = 0;  // the scan line being read or skipped; 0 when valid
+  std::size_t streamedLine_ = 0;     // the 'streamed' header line; 0 when the log has none
 };
 
 // ---------------------------------------------------------------------------------------------
 // Writing
 
 // Throws std::runtime_error (without a path; callers add it) when the reader would reject the file.
-void checkWritable(const Dataset& d) {
+void checkRing(const SonarRing& ring) {
   auto bad = [](const std::string& why) { throw std::runtime_error(why); };
-  const SonarRing& ring = d.ring;
   if (!validRobotName(ring.robot)) {
     bad("robot name '" + ring.robot + "' is not 1 to 64 characters from A-Z a-z 0-9 _ . -");
   }
@@ -488,30 +515,39 @@ void checkWritable(const Dataset& d) {
   }
   if (ring.sonars.empty()) bad("the ring has no sonars");
   if (ring.sonars.size() > kMaxSonars) bad("the ring has more than 65536 sonars");
+  for (std::size_t i = 0; i < ring.sonars.size(); ++i) {
+    const Pose2D& p = ring.sonars[i].pose;
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.heading))
+      bad("sonar " + std::to_string(i) + " has a non-finite pose");
+  }
+}
+
+// `where` names the scan in messages; `lastTime` is the time of the scan before it.
+void checkScan(const Scan& s, std::size_t sonars, double lastTime, const std::string& where) {
+  auto bad = [](const std::string& why) { throw std::runtime_error(why); };
   auto finitePose = [](const Pose2D& p) {
     return std::isfinite(p.x()) && std::isfinite(p.y()) && std::isfinite(p.heading);
   };
-  for (std::size_t i = 0; i < ring.sonars.size(); ++i) {
-    if (!finitePose(ring.sonars[i].pose))
-      bad("sonar " + std::to_string(i) + " has a non-finite pose");
+  if (!std::isfinite(s.time)) bad(where + " has a non-finite time");
+  if (s.time < lastTime) bad(where + " is earlier than the scan before it");
+  if (!finitePose(s.odometry)) bad(where + " has a non-finite odometry pose");
+  if (s.truth && !finitePose(*s.truth)) bad(where + " has a non-finite true pose");
+  for (std::size_t k = 0; k < s.readings.size(); ++k) {
+    const Reading& r = s.readings[k];
+    const std::string what = where + " reading " + std::to_string(k);
+    if (r.sonar >= sonars)
+      bad(what + " names sonar " + std::to_string(r.sonar) + ", not in the ring");
+    if (std::isnan(r.range) || r.range < 0.0) bad(what + " has a range that is not >= 0");
+    if (!std::isfinite(r.time)) bad(what + " has a non-finite time");
   }
+}
+
+void checkWritable(const Dataset& d) {
+  checkRing(d.ring);
   double lastTime = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < d.scans.size(); ++i) {
-    const Scan& s = d.scans[i];
-    const std::string where = "scan " + std::to_string(i);
-    if (!std::isfinite(s.time)) bad(where + " has a non-finite time");
-    if (s.time < lastTime) bad(where + " is earlier than the scan before it");
-    lastTime = s.time;
-    if (!finitePose(s.odometry)) bad(where + " has a non-finite odometry pose");
-    if (s.truth && !finitePose(*s.truth)) bad(where + " has a non-finite true pose");
-    for (std::size_t k = 0; k < s.readings.size(); ++k) {
-      const Reading& r = s.readings[k];
-      const std::string what = where + " reading " + std::to_string(k);
-      if (r.sonar >= ring.sonars.size())
-        bad(what + " names sonar " + std::to_string(r.sonar) + ", not in the ring");
-      if (std::isnan(r.range) || r.range < 0.0) bad(what + " has a range that is not >= 0");
-      if (!std::isfinite(r.time)) bad(what + " has a non-finite time");
-    }
+    checkScan(d.scans[i], d.ring.sonars.size(), lastTime, "scan " + std::to_string(i));
+    lastTime = d.scans[i].time;
   }
 }
 
@@ -520,6 +556,15 @@ class ByteSink {
  public:
   virtual ~ByteSink() = default;
   virtual void write(const char* data, std::size_t n) = 0;  // throws std::runtime_error
+};
+
+class StringSink : public ByteSink {
+ public:
+  explicit StringSink(std::string& out) : out_(out) {}
+  void write(const char* data, std::size_t n) override { out_.append(data, n); }
+
+ private:
+  std::string& out_;
 };
 
 class StreamSink : public ByteSink {
@@ -546,7 +591,9 @@ class AtomicFileSink : public ByteSink {
 // Formats into a buffer and hands it to the sink in large blocks.
 class TextWriter {
  public:
-  explicit TextWriter(ByteSink& sink) : sink_(sink) { buf_.reserve(kFlushBytes + 256); }
+  explicit TextWriter(ByteSink& sink, std::size_t reserve = kFlushBytes + 256) : sink_(sink) {
+    buf_.reserve(reserve);
+  }
 
   TextWriter& operator<<(std::string_view s) {
     buf_ += s;
@@ -618,8 +665,7 @@ void writeQuoted(TextWriter& w, const std::string& s) {
   w << '"';
 }
 
-void writeText(const Dataset& d, ByteSink& sink) {
-  TextWriter w(sink);
+void writeHeader(TextWriter& w, const Dataset& d, bool streamed) {
   w << kMagic << ' ' << static_cast<std::size_t>(kSglogVersion);
   w.endLine();
   w << "# SonarGrid log; units: metres, radians, seconds; see docs/formats.md";
@@ -640,28 +686,40 @@ void writeText(const Dataset& d, ByteSink& sink) {
     w << "sonar " << i << ' ' << p.x() << ' ' << p.y() << ' ' << p.heading;
     w.endLine();
   }
+  if (streamed) {
+    w << kStreamed;
+    w.endLine();
+  }
   w << kEndHeader;
   w.endLine();
-  for (const Scan& s : d.scans) {
-    w << kScan << ' ' << s.time << ' ' << s.odometry.x() << ' ' << s.odometry.y() << ' '
-      << s.odometry.heading << ' ';
-    if (s.truth) {
-      w << s.truth->x() << ' ' << s.truth->y() << ' ' << s.truth->heading;
+}
+
+// The one formatter of a scan's lines: its 'scan' line and its 'r' lines.
+void writeScan(TextWriter& w, const Scan& s) {
+  w << kScan << ' ' << s.time << ' ' << s.odometry.x() << ' ' << s.odometry.y() << ' '
+    << s.odometry.heading << ' ';
+  if (s.truth) {
+    w << s.truth->x() << ' ' << s.truth->y() << ' ' << s.truth->heading;
+  } else {
+    w << kNone;
+  }
+  w.endLine();
+  for (const Reading& r : s.readings) {
+    w << kReading << ' ' << static_cast<std::size_t>(r.sonar) << ' ';
+    if (r.echo()) {
+      w << r.range;
     } else {
       w << kNone;
     }
+    w << ' ' << r.time;
     w.endLine();
-    for (const Reading& r : s.readings) {
-      w << kReading << ' ' << static_cast<std::size_t>(r.sonar) << ' ';
-      if (r.echo()) {
-        w << r.range;
-      } else {
-        w << kNone;
-      }
-      w << ' ' << r.time;
-      w.endLine();
-    }
   }
+}
+
+void writeText(const Dataset& d, ByteSink& sink) {
+  TextWriter w(sink);
+  writeHeader(w, d, false);
+  for (const Scan& s : d.scans) writeScan(w, s);
   w << kEnd;
   w.endLine();
   w.flush();
@@ -685,6 +743,33 @@ Dataset readSglog(const std::string& path) {
   text::FileSource source(path);
   LoadReport report;
   return readSglog(source, path, LogOptions{}, report);
+}
+
+std::string sglogHeaderText(const Dataset& header, bool streamed) {
+  try {
+    checkRing(header.ring);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string("cannot write the sglog header: ") + e.what());
+  }
+  std::string out;
+  StringSink sink(out);
+  TextWriter w(sink, 0);
+  writeHeader(w, header, streamed);
+  w.flush();
+  return out;
+}
+
+void appendSglogScan(std::string& out, const Scan& scan, const SonarRing& ring,
+                     double previousTime) {
+  try {
+    checkScan(scan, ring.sonars.size(), previousTime, "the scan at time " + number(scan.time));
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(std::string("cannot write the sglog scan: ") + e.what());
+  }
+  StringSink sink(out);
+  TextWriter w(sink, 0);
+  writeScan(w, scan);
+  w.flush();
 }
 
 void writeSglog(const Dataset& dataset, std::ostream& out) {

@@ -5,6 +5,7 @@
 
 #include <iosfwd>
 #include <string>
+#include <string_view>
 
 #include "sonargrid/base/log_error.h"
 #include "sonargrid/dataset.h"
@@ -24,6 +25,17 @@ class ByteSource;
 // The reader behind readLog (log_reader.h): lenient skipping, progress and cancel.
 Dataset readSglog(text::ByteSource& source, const std::string& displayName,
                   const LogOptions& options, LoadReport& report);
+
+// The pieces of a log written as it is recorded (sglog_recorder.h), formatted by the same code as
+// writeSglog. The header holds the name and ring of `header` (its scans are ignored) and, when
+// `streamed`, the 'streamed' record that lets the log end without 'end' (docs/formats.md,
+// "Streamed logs"). appendSglogScan appends one scan's lines to `out`. Both throw
+// std::runtime_error when the reader would reject what they write (a scan earlier than
+// `previousTime`, a reading naming a sonar outside `ring`, a non-finite number...).
+std::string sglogHeaderText(const Dataset& header, bool streamed);
+void appendSglogScan(std::string& out, const Scan& scan, const SonarRing& ring,
+                     double previousTime);
+inline constexpr std::string_view kSglogEndLine = "end\n";
 
 // Writes atomically (base/atomic_file.h: a unique temporary file, synced and renamed over `path`);
 // throws std::runtime_error naming the path when it cannot (FileWriteError for a file system

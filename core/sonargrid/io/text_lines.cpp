@@ -93,6 +93,7 @@ bool LineReader::next(std::string_view& line) {
       if (pos - begin_ > kMaxLineBytes) throwTooLong();
       line = std::string_view(base + begin_, pos - begin_);
       begin_ = pos + 1;
+      ended_ = true;
       break;
     }
     if (end_ - begin_ > kMaxLineBytes) {
@@ -104,6 +105,7 @@ bool LineReader::next(std::string_view& line) {
       ++line_;  // a last line without '\n'
       line = std::string_view(base + begin_, end_ - begin_);
       begin_ = end_;
+      ended_ = false;
       break;
     }
     // Keep the partial line and refill behind it; at most kMaxLineBytes move, so this stays linear.

@@ -91,6 +91,9 @@ class LineReader {
   // The next line without its '\n' (or "\r\n"); valid until the following call. False at the end.
   bool next(std::string_view& line);
   std::size_t lineNumber() const { return line_; }
+  // False when the line `next` returned last is a final line without its '\n' (a file cut short
+  // inside its last line, or one that simply lacks the final line ending).
+  bool lineEnded() const { return ended_; }
 
  private:
   static constexpr std::size_t kChunkBytes = 256 * 1024;
@@ -106,6 +109,7 @@ class LineReader {
   std::size_t end_ = 0;
   std::uint64_t bytesRead_ = 0;
   bool eof_ = false;
+  bool ended_ = true;
   std::size_t line_ = 0;
 };
 

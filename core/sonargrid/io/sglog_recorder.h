@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// A `.sglog` written while it is recorded (docs/formats.md, "Streamed logs"): the header first,
+// then each scan appended as it comes, and 'end' when the recording finishes. Each scan goes to
+// the file at once (a process killed with SIGKILL loses nothing it appended) and the file is
+// fsync'd at least every `syncInterval` seconds of appending and on sync() (a machine that loses
+// power loses at most that much). The header carries the 'streamed' record, so the file reads as
+// a valid log whenever it is cut after a complete line, and the reader leaves out a last line cut
+// short. Unlike writeSglog this is not atomic: the file is there, and growing, from the start.
+
+#include <chrono>
+#include <cstddef>
+#include <limits>
+#include <string>
+
+#include "sonargrid/dataset.h"
+
+namespace sg {
+
+class SglogRecorder {
+ public:
+  // Creates `path` (replacing a file of that name), writes the header of `header` (its name and
+  // ring; its scans are ignored) and makes the file and its directory entry durable. Throws
+  // std::runtime_error naming the path when it cannot.
+  SglogRecorder(const std::string& path, const Dataset& header, double syncInterval = 1.0);
+  ~SglogRecorder();
+  SglogRecorder(const SglogRecorder&) = delete;
+  SglogRecorder& operator=(const SglogRecorder&) = delete;
+
+  // Appends a scan. Throws std::runtime_error when the scan cannot be written (earlier than the
+  // last one, a reading of a sonar outside the ring, a non-finite number) or the file cannot
+  // (the disk is full); the file then still ends after the last complete scan.
+  void append(const Scan& scan);
+  // fsync when something was appended since the last one.
+  void sync();
+  // Appends 'end', syncs and closes; later calls do nothing. Throws like append().
+  void finish();
+
+  const std::string& path() const { return path_; }
+  const SonarRing& ring() const { return ring_; }
+  std::size_t scans() const { return scans_; }
+  std::size_t readings() const { return readings_; }
+  bool finished() const { return fd_ < 0; }
+
+ private:
+  void writeAll(const std::string& bytes);
+  [[noreturn]] void fail(const std::string& why) const;
+
+  std::string path_;
+  SonarRing ring_;
+  int fd_ = -1;
+  std::chrono::steady_clock::duration syncInterval_;
+  std::chrono::steady_clock::time_point lastSync_;
+  bool dirty_ = false;
+  double lastTime_ = -std::numeric_limits<double>::infinity();
+  std::size_t scans_ = 0;
+  std::size_t readings_ = 0;
+  std::string buffer_;
+};
+
+}  // namespace sg
