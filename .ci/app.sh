@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Quick start, first command: installs what is missing, builds, maps the bundled room log with the
 # CLI, and opens the desktop app on a bundled log of paper 000's test room (raschke-multi, run 1 in
 # motion, with the room's reference walls), already mapped. Without a display it saves a screenshot

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Installs the Debian 12 packages SonarGrid builds and tests with, and only those that are missing.
 # Every dependency of the project is listed here and nowhere else.
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Fuzz smoke test: builds every libFuzzer target of tests/fuzz with clang (ASan + UBSan) into
 # build-fuzz/ and runs each over its seed corpus for FUZZ_SECONDS (default 30). A crash, a
 # sanitizer report or a leak fails the job; the input that caused it is kept in build-fuzz/findings.

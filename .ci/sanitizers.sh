@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Builds the core, the CLI and their tests with AddressSanitizer + UndefinedBehaviorSanitizer into
 # build-asan/ and runs the core, CLI and live-robot test suites under them. Any report fails the job.
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Quick start, second command: installs what is missing, builds, and runs every test: the offscreen
 # suites first, then the OpenGL suites (ctest label gl) on a virtual X server.
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Builds the core, the CLI and their tests with ThreadSanitizer into build-tsan/ and runs the core
 # and CLI suites under it with SONARGRID_THREADS=4: every parallel path (the mapper's stripes and
 # pipeline, snapshots, the cone tables, the sweep) then runs on four threads, whatever the runner's

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // What the beam-model view draws, as pure functions of (settings, reading) → QImage, so it can be
 // tested pixel by pixel offscreen. Every value drawn comes from SensorModel::evaluate (the same

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The beam-model view (for teaching; paper 002 Figs 2, 3 and 5): for the chosen model, its
 // parameters and a reading s, the 2-D map of P(occ) over the cone, the axial profile with its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The import dialog of a generic CSV or whitespace-separated sonar log (docs/user-guide.md,
 // "Importing CSV logs"): a preview of the first rows, a role per column (time, x, y, θ, sonar k or

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The OpenGL surface of GridView: the level layer lives in an 8-bit texture, a 16 x 1 palette
 // texture recolours it in the fragment shader, and only the rows whose levels changed are sent

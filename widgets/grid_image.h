@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The picture of a grid: a pure function of the map, the palette, the overlays and the view
 // transform (DESIGN.md, "Rendering and tests"). The raster view paints it, the OpenGL view draws

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The grid view: pan, zoom (wheel, pinch, keys), fit, a hover read-out and toggled overlays over a
 // map snapshot. It draws through one of two surfaces chosen at construction: an OpenGL surface (the

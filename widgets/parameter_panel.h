@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The parameter panel: model and rule choosers, a slider and a spin box for every parameter the
 // chosen model and rule declare (built from their ParameterSpecs, nothing restated here), the paper

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // Re-maps a dataset off the GUI thread (DESIGN.md, "Threading"). Each request gets a generation
 // number; a newer request raises the cancel flag of the running one, which stops within a few

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The timeline under the views: scrub to a time t (the map then holds every reading up to t), play
 // and pause at 1x to 50x, and step scan by scan. It only reports times; the window hands them to

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // A small, strict command-line reader: every flag is consumed once, anything left over is an error
 // that names it. Errors are UsageError, which main() turns into exit status 2.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `sonargrid-cli convert`: read a log of any supported format and write it as .sglog or CARMEN
 // (docs/cli.md, "convert").
 

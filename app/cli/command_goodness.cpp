@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `sonargrid-cli goodness`: map quality without a reference (paper 002 §5; docs/cli.md,
 // docs/metrics.md): VSDNS and derivative noise of one run, and the two-run comparison when a second
 // log of the same place is given.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `sonargrid-cli map`: map a log with one model and rule, print a summary (or --json), export PNG
 // and ROS maps.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `sonargrid-cli models [--json | --markdown]`: the parameter declarations of every model and rule,
 // and which pairs may be combined. The GUI panel reads the same declarations, and `--markdown`
 // prints the generated part of docs/models.md (the ctest docs_models_in_sync keeps the two equal).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `sonargrid-cli reproduce raschke1990|osullivan|arafat --out DIR`: reruns a paper's experiment on
 // the bundled datasets (docs/cli.md, docs/reproduction.md) and writes its tables and figures.
 // This file parses the arguments and holds what the three experiments share.

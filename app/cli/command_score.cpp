@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `sonargrid-cli score`: a built map against a reference (docs/cli.md, docs/metrics.md). The map
 // is built from a log with the flags of `map`, or read from a ROS map_server .yaml.
 

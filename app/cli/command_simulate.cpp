@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `sonargrid-cli simulate`: a simulated sonar log of a robot driving a route through a world given
 // as a reference map (docs/cli.md, docs/simulator.md). The same arguments always write the same
 // bytes: every random number comes from --seed.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The subcommands of sonargrid-cli (docs/cli.md). Each returns the process exit status.
 

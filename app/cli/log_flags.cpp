@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The log-reading flags every command that reads a log shares (docs/cli.md, "Reading logs"):
 // --format, --lenient, --robot, --columns, --poses.
 

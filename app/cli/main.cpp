@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // sonargrid-cli: the headless face of SonarGrid. Exit status: 0 success, 2 bad arguments or input
 // the user must fix (one line on stderr says what), 1 anything else (e.g. an output not written).
 

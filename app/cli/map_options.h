@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The flags every command that builds a map shares (`map`, `score`, `goodness`):
 // --log, --pose, --model, --rule, --set, --cell, --until, --threads (thread_flags.h), and the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // `sonargrid-cli reproduce`: the experiments of the three papers rerun on the bundled datasets
 // (docs/reproduction.md). One file per paper; this header holds what they share.

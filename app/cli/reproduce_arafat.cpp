@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Paper 002 (Arafat, Hellström & Rashid): Fig. 6 (Murphy's standard model against the
 // parameterized model with the paper's parameters) and the 1440-set sweep of Table 1 judged by
 // VSDNS, with the histogram of Fig. 7, the three VSDNS rules of Table 1 and the optima of the

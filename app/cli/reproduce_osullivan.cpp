@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Paper 001 (O'Sullivan et al.), §5: the sonar-model table (2-D Gaussian against Konolige's
 // multiple-target model, both with the log update) and the update-method table (simple, Bayesian
 // and log updates, all with the multiple-target model), each scored by the paper's four benchmarks

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Paper 000 (Raschke & Borenstein 1990), Table 1 and Fig. 4: the Index of Performance of HIMM
 // maps built in motion against HPF maps built from four stops, ten runs in each of the two
 // obstacle environments (paper 000 §4.2), on 10 cm cells (§3: "we use square cells of 10cm

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The desktop app's window: the grid view in the centre, docks around it, the File / View /
 // Mapping / Help menus, and the wiring between the document (log, reference, mapper settings), the

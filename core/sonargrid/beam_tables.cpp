@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/beam_tables.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Precomputed distance and bearing from a sensor to the centres of the cells around it, so that
 // rasterising a sonar cone needs no per-cell sqrt or atan2 (the lookup-table inserter of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A sonar log in memory: the ring that took it and time-ordered scans, each with an odometry pose,
 // an optional true pose and the readings taken at that pose.

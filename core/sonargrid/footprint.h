@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What one reading writes into the grid: the sensor model's output, which the update rule consumes
 // (the model / storage split of DESIGN.md). Every model fills all three values consistently:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The geometry of a grid: origin (world position of the lower-left corner of cell (0, 0)), square
 // cell size and size in cells. Cell (ix, iy) covers [ox + ix*c, ox + (ix+1)*c) x [oy + iy*c, ...);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Mapper = SensorModel × UpdateRule × parameters × Grid (DESIGN.md, "Data flow"). Batch mapping
 // (a whole log, or up to time t) is incremental mapping run over the scans in order, so both give

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // An immutable snapshot of a built map: what views, exporters and metrics read. Every update rule
 // yields the same layers (notes/models-and-metrics.md, "Certainty values").

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Every tunable number is declared once, here in the form of a ParameterSpec, by the model or rule
 // that owns it. The CLI (`models --json`, `--set`), the GUI panel and docs/models.md all read the

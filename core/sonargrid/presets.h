@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The settings the three papers used, as data: a model, a rule and the parameter values each paper
 // prints, every value with the place it is printed. A parameter a paper does not state keeps the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Sonar mounting and rings. Presets follow notes/formats-and-protocols.md ("Sonar geometry").
 

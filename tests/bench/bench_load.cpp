@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Large-log timing (issue 6, "Large logs"): writes a log of one million readings (62 500 scans of a
 // 16-sonar Pioneer ring driving loops in a 10 m x 8 m room) as .sglog and as CARMEN, then, each in
 // a fresh child process so that nothing else inflates its memory, loads it through readLog and maps

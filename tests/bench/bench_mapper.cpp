@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Full re-map time per model × rule (issue 2's benchmark target: ≤ 300 ms for every pair), on the
 // two workloads of bench_workload.h (100 000 readings each, default parameters):
 //   sim/…     the simulated hall, what a robot would log there;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Slider-change -> repainted-view latency (issue 5, item 10). Not run by ctest.
 //
 //   bench_remap_latency LOG [--model M] [--rule R] [--param NAME] [--steps N] [--pose odom|truth]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The re-map workloads of issue 2's benchmark target, shared by bench_mapper (wall-clock medians)
 // and profile_remap (a single-threaded driver for instruction counts under callgrind).

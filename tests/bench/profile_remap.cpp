@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // A single-threaded re-map for instruction counts: the hot path without the pipeline's spinning,
 // so callgrind's counts are deterministic. Also prints a digest of the map, to tell a change that
 // keeps results from one that does not.

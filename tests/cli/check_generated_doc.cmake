@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Keeps a generated block of a Markdown document equal to what sonargrid-cli prints.
 #
 # The block sits between the lines

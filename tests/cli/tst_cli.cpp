@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // sonargrid-cli as a script sees it: the `models` and `map` contract of docs/cli.md, checked by
 // running the binary through QProcess on the bundled room log and on logs derived from it at run
 // time (a copy without true poses, one with shifted odometry, one with a malformed line), so that

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The log-reading flags of sonargrid-cli (--format, --lenient, --robot, --columns, --poses) on
 // map, score and goodness, and the convert command (docs/cli.md).
 

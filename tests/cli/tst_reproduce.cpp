@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // `sonargrid-cli reproduce` on tiny datasets laid out like the bundled ones (docs/cli.md,
 // docs/reproduction.md): every file is written and every summary key is there. The datasets are
 // generated here with the ray-cast simulator, so those cases need nothing from datasets/.

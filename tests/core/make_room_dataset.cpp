@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Generates the bundled "room" log (datasets/README.md):
 //   make_room_dataset OUT.sglog [OUT.json]
 // writes the simulated sonar log and, when asked, the room's reference map. Both come from the one

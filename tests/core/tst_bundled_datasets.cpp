@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Every simulated dataset bundled in datasets/ (datasets/README.md) loads, holds what the README
 // says it holds, and maps against its world.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // CARMEN logs: the hand-written fixture (ODOM, TRUEPOS, SONAR with the ring on the line, skipped
 // message types, a SONAR line with extra fields), a log written with the logger's own format
 // strings (writer_fixtures.h), numbers that are not finite, and the writer's round trip.

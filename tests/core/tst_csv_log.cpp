@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Generic CSV / text logs: the column spec, the mm + tenths-of-a-degree fixture with the no-echo
 // value 5110, the poses file joined on time, and sonar geometry files.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Map exports: the palettes, the PNG picture (checked pixel by pixel through renderMapImage, plus
 // the PNG file's signature and IHDR size) and the ROS map_server pair (checked byte by byte).
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The geometry of the core: poses, the sonar ring presets, grid geometry, parameter sets, the beam
 // lookup tables and the cone rasteriser. Every expected number is worked out by hand in the comment
 // next to it; the rasteriser is also checked against a brute force over every cell of a grid.

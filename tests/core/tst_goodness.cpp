@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Goodness without a reference (paper 002 §5; docs/metrics.md): VSDNS streamed through the
 // mapper's footprint observer, derivative noise with a 3 x 3 window, and the two-run comparison.
 // Every expected number is worked by hand in the row's comment.

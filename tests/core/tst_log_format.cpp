@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Choosing a reader (auto-detection), the exact error of every malformed fixture, lenient loading,
 // progress and cancel, and robustness of every reader against garbage.
 

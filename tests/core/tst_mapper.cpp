@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The mapper: batch equals incremental bit for bit, "until t" equals the prefix of the log,
 // results are deterministic, and the errors a user can cause are reported.
 

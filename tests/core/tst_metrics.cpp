@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Metrics against a reference (docs/metrics.md): IOP (paper 000 eq 9), correlation, map scores,
 // the Moravec–Blackwell match, cross-entropy, Brier, ROC AUC, precision / recall / F1 / IoU and the
 // path comparison. Expected values are worked by hand on tiny grids; each row says how.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Player writelog logs: a 2.x/3.x fixture with geometry, position2d, sonar and an ignored laser; a
 // 1.x fixture (no type/subtype fields) whose geometry comes from a robot preset; ranger data; the
 // logs written with writelog's own format strings (writer_fixtures.h); numbers it cannot hold.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The paper presets: every value is declared and inside its declared range, every pair is
 // allowed, and the values are the ones the papers print (the expected numbers below are copied
 // from the paper place each row names, not from presets.cpp).

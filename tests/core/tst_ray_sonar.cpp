@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The ray-cast sonar against hand-computed geometry, its determinism and its noise statistics.
 
 #include <QtTest>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Reference maps: the sonargrid-reference JSON reader and writer, the ArMap and ROS map_server
 // imports, the actual position grid (supercover) and the ideal map. Fixtures are in
 // tests/data/reference/ (small.map is written by hand in ArMap's layout; box.* is one 4 x 3

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The bundled room dataset: the generator reproduces it byte for byte, and its content is what
 // datasets/README.md says it is.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Update rules over short hand-worked sequences. Each step's number is computed by hand from the
 // formula the comment names.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The native .sglog log: round trips, the exact error messages of docs/formats.md, the writer's
 // atomic replacement and robustness against garbage input.
 

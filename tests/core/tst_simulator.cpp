@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The full simulator (docs/simulator.md) against hand-computed geometry: surfaces and their
 // specular limits, multipath, crosstalk, round poles, the range window, differential-drive
 // kinematics, odometry drift statistics with a fixed seed, routes and stop spacing, and the world

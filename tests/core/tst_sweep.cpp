@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The parameter sweep of paper 002 Table 1 and its optimal-set rules (core/sonargrid/sweep/).
 
 #include <QtTest>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: ArMap .map files (tests/fuzz/README.md).
 #include <cstdint>
 #include <string_view>

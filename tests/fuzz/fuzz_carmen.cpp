@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: the carmen reader (tests/fuzz/README.md).
 #include "fuzz_log.h"
 

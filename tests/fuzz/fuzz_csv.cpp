@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: the CSV reader and the --columns spec. The input's first line is the column
 // spec, the rest the log (tests/fuzz/README.md).
 #include <stdexcept>

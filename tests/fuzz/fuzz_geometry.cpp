@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: sonar geometry files (--robot FILE) (tests/fuzz/README.md).
 #include "fuzz_log.h"
 #include "sonargrid/io/csv_log.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The body of every log-reader fuzz target: the input is a whole log, read strictly and leniently.
 // A Dataset or a LogError are the only acceptable outcomes; anything else (a crash, a sanitizer

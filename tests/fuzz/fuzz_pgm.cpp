@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: the PGM images of ROS map_server maps (tests/fuzz/README.md).
 #include <cstdint>
 #include <string_view>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // libFuzzer target: the YAML of ROS map_server maps. readRosMap takes a path, so each input is
 // written to a private temporary folder beside a small valid image, box.pgm, that the YAML may
 // name (tests/fuzz/README.md).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The OpenGL surface against the raster picture: the same map, view and overlays must give the
 // same pixels within a tolerance (the shader computes cell indices in single precision, so a pixel
 // centre within ~1e-5 cells of a cell edge may fall on the other side; overlays blended as an

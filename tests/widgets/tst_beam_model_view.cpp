@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Pixel checks of the pure beam-model render (renderBeamModel), and the view's own controls.
 // Colours expected are the 16-level palette (export/palette.cpp) at P values worked by hand from
 // the model formulas named beside each row; a pixel centre lies within half a pixel (< 0.01 m) of

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The CSV import dialog offscreen: the roles, units, no-echo value and geometry chosen through its
 // API write the --columns spec docs/formats.md documents for tests/data/logs/mm_ddeg.csv, and the
 // options it builds load the same Dataset as readLog with that spec; bad choices show the first

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The picture of a grid, pixel by pixel: renderGridCells/renderGridImage are pure functions, so
 // every expected colour below is worked out by hand from the view geometry.
 

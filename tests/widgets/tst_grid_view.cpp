@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The grid view under the offscreen platform (raster surface): hover read-out, keys, wheel, fit.
 
 #include <QSignalSpy>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The main window offscreen: the timeline at t shows the map `sonargrid-cli map --until t` builds
 // (both call Mapper::mapDataset(log, t) on the log's fitting grid), a bad file leaves the open
 // document alone, recent files are remembered.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // Loading a large log in the main window offscreen: the load runs on a worker thread and reports
 // progress; cancelling it, replacing it with another file, a malformed file or a log no grid can
 // hold leaves the previous document and its map as they were (nothing half-loaded is shown).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The main window's parameter panel and beam-model view, offscreen: a key on a focused slider
 // re-maps the log and the view shows exactly the map Mapper::mapDataset builds with the new value;
 // a burst of slider moves delivers only the newest map; settings set from outside the panel (the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // The parameter panel driven as a user drives it (QTest keys and mouse), watched with QSignalSpy.
 // Expected parameter lists are the declarations in core/sonargrid/models/*.cpp and rules/*.cpp;
 // expected values are worked out in the comment beside each.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
 // RemapController: only the newest request's map is delivered, a stale run is cancelled, the
 // delivered map is the batch map, and moving the time forward continues the map exactly.
 

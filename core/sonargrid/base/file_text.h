@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Whole-file reading and line splitting for the readers of small files (reference maps, routes,
 // ROS map YAML and images), and the quoting of offending text in their errors. Such files are

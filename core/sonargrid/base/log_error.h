@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The one error type of every log and map reader: it names the file, the line and the field, and
 // says what was expected (docs/formats.md, "Errors"). It lives below io/ and reference/ because

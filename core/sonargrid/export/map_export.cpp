@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/export/map_export.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Exports of a built map: a PNG coloured by the 16 levels (north up, one pixel per cell times
 // `scale`, optional legend) and a ROS map_server pair (`.yaml` + `.pgm`).

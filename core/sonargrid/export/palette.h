@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The 16-level certainty palette shared by exports and views (level 0 = certainly free,
 // 15 = certainly occupied).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // CARMEN logs (notes/formats-and-protocols.md, "CARMEN log"; docs/formats.md, "CARMEN"): one
 // message a line, metres and radians. ODOM gives the odometry pose, TRUEPOS the true pose, and each

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The column mapping of a generic CSV or whitespace-separated sonar log (docs/formats.md, "CSV and
 // text columns"): which column holds the time, the pose and each sonar, in which units, and which

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Generic CSV or whitespace-separated sonar logs (docs/formats.md, "CSV and text columns"): one row
 // per scan, the columns named by a CsvLayout, the pose in the same rows or in a second file joined

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // How a log is read (docs/formats.md, "Choosing a reader"): which format, how strictly, the
 // sonar geometry and column layout a format may lack, and the progress and cancel hooks of a

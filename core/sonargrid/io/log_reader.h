@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The one entry point for loading a sonar log of any supported format (docs/formats.md, "Choosing
 // a reader"): .sglog, CARMEN, Player writelog or generic CSV, chosen by LogOptions::format or, for

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Player writelog logs (notes/formats-and-protocols.md, "Player writelog"; docs/formats.md,
 // "Player"): `time host robot interface index type subtype payload...` for Player 2.x/3.x and

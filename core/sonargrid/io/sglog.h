@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The native `.sglog` log: text, versioned header, SI units, the robot and its sonar geometry in
 // the header. docs/formats.md is the specification; write followed by read gives back an equal

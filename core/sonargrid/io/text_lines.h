@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What every text log reader shares: byte sources (a file, a stream, memory), a streaming line
 // splitter with a line-length cap, progress and cancel, the UTF-8 check, field splitting and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Derivative noise, the second goodness measure of paper 002 §5, on p(occ) with a 3 × 3 window:
 //   S(x, y) = Σ over the window |W(i, j) − W(x, y)|,  D(x, y) = S(x, y) / (3·3 − 1),

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A* on a grid, 8-connected, for the path comparison benchmark (paper 001 §4, benchmark 4).
 // A diagonal step is allowed only when both cells beside it are passable (no squeezing between

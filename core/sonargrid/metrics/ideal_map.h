@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The ideal map: what a perfect map of the reference would hold in each cell of the scored grid
 // (paper 001 §4 compares built maps with "hand drawn ideal maps"). Edges of the reference (its

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/metrics/index_of_performance.h"
 
 #include <opencv2/core.hpp>

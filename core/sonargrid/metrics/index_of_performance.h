@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The Index of Performance of paper 000 §3, eq 9:
 //   I = Σ D_min(i, j) · CV(i, j) / Σ CV(i, j)   over the filled cells of the built map,

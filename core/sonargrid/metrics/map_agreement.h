@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Cell-by-cell agreement of a built map's p(occ) with the ideal map (ideal p: 1 on the APG, 0 in
 // free space), over the evaluated cells (ideal known and built observed; see ideal_map.h):

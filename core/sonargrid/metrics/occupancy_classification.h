@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The built map as a classifier of occupied cells, against the ideal map (beyond the papers):
 //   ROC AUC of p(occ) as a score (ties count one half: the Mann–Whitney U with mid-ranks);

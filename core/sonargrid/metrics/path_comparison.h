@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Path comparison (paper 001 §4, benchmark 4, after O'Sullivan 2003): would a robot that plans on
 // the built map collide with the real world? (docs/metrics.md, "Path comparison")

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Every metric of a built map against a reference, computed together so that the APG, the distance
 // transform and the ideal map are built once. What `sonargrid-cli score` prints and the GUI's

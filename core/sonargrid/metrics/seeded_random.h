@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Random draws that are the same on every platform: std::mt19937_64 is fully specified by the
 // standard, but std::uniform_int_distribution is not (each library maps bits to integers its own

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The third goodness measure of paper 002 §5: two runs over the same place should give the same
 // map. Both maps are thresholded to binary (occupied when p > 0.5) and compared cell by cell, after

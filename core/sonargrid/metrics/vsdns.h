@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // VSDNS, the first goodness measure of paper 002 §5: for each cell the sample standard deviation
 //   σ = sqrt(Σ (X_k − X̄)² / (N − 1))

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The shape every cone model shares. A model's per-reading constants are a `Shape<S>` (S = double
 // or float) with one formula,

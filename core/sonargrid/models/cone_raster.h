@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Finds the cells whose centres lie in a sonar cone, using BeamTables for distance and bearing,
 // as one run of consecutive cells per grid row. Each row is looked at only over the span where the

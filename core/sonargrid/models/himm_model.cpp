@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The HIMM beam (paper 000 §2.2): only the acoustic axis. The cell holding the echo gets occupied
 // evidence, the cells between the sensor and it free evidence; the HIMM rule turns these into +I⁺
 // and −I⁻. For the probabilistic rules the two kinds carry OctoMap's hit and miss probabilities,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Moravec–Elfes heuristic probability functions, as paper 000 §2.1 (eqs 1–6) and paper 001 §2.1
 // print them.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Konolige's multiple-target model (paper 001 §2.2, after Konolige 1997), in the reading fixed by
 // notes/models-and-metrics.md: the printed ratio of densities becomes the likelihood ratio
 //   λ = p(D | cell occupied) / p(D | cell empty)

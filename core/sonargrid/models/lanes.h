@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Four single-precision lanes, for evaluating a cone model on a row of cells at a time (GCC and
 // Clang vector extensions: SSE on x86-64, plain scalar code on a target without vectors).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The concrete sensor models, as the registry reaches them. Each class lives in its own .cpp file.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Murphy's standard sonar model (paper 002 §3.1, eqs 1–4, after Murphy 2000). For a cell at range r
 // and angle α inside the cone (|α| ≤ β):
 //   v = ((R − r)/R + (β − α)/β) / 2

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // The parameterized sensor model P1–P5 (paper 002 §4, Figure 4 and eq 7). Along the acoustic axis,
 // for a reading s:
 //   Region II, 0 ≤ r < s − P3:  rises linearly from P1 at the sensor to 0.5 − P2

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include <stdexcept>
 
 #include "sonargrid/models/cone_model.h"

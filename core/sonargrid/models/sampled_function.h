@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A smooth function of one variable sampled on a uniform grid and read back with linear
 // interpolation: how the hot path evaluates exp and erf without calling them per cell. Outside

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // An inverse sensor model turns one sonar reading into per-cell evidence (a Footprint). It knows
 // nothing of how the grid stores or combines values: that is the UpdateRule's job.

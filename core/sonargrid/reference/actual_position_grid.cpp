@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/reference/actual_position_grid.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The actual position grid (APG) of paper 000 §3: "the lines connecting these coordinates are
 // computed and projected onto a blank grid", a cell being 1 when an edge of an object passes

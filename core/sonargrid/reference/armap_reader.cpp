@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/reference/armap_reader.h"
 
 #include <array>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // ArMap `.map` files (MobileRobots / Adept ARIA, MobileSim, AMRISim) as reference maps
 // (notes/formats-and-protocols.md, "ArMap"). Only the LINES section is used: each wall segment

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The 8-bit grey images of map_server maps. PGM (P5 binary and P2 text, maxval <= 255) is read
 // here, so that its errors name the header line and field; any other format (PNG...) is decoded by

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // One entry point for every reference a user may hand to `score`: sonargrid-reference JSON, an
 // ArMap `.map` (its LINES) or a ROS map_server `.yaml` (its occupied pixels).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/reference/reference_json.h"
 
 #include <charconv>

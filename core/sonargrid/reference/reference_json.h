@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The reference map file (docs/metrics.md, "Reference map JSON"):
 //   {"format": "sonargrid-reference", "version": 1, "units": "m",

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A reference map: what the world really looks like, as a user measures it with a tape (paper 000
 // §3: "the absolute coordinates of the corners comprising each object are measured"). Objects are

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/reference/ros_map_reader.h"
 
 #include <charconv>

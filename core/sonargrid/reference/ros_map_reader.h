@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // ROS map_server maps (`.yaml` + image), read two ways (docs/metrics.md, "ROS map_server maps"):
 //   - as a reference: the occupancy image says where obstacles are (p > occupied_thresh), where

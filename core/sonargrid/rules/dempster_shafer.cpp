@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Dempster–Shafer combination over the frame {occupied, empty} (Murphy, Introduction to AI
 // Robotics, 2000, §11.4; none of the three papers implements it). A reading's masses are
 // m(occ) = pO, m(emp) = pE, m(unknown) = 1 − pO − pE. Dempster's rule:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // HIMM's histogram grid (paper 000 §2.2): +I⁺ (3) for the echo cell, −I⁻ (1) for the cells before
 // it, CV clamped to [0, 15].
 

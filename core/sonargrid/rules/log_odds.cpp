@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Clamped log-odds: L ← clamp(L + logit(p) − logit(prior), logit(clamp_min), logit(clamp_max))
 // (Thrun, Burgard & Fox 2005 §9.2; the clamping thresholds are OctoMap's defaults). The layer holds
 // the odds exp(L): adding logits is multiplying odds and the clamp is monotonic, so it is the same

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 // Paper 001 §3.3: Emp ← Emp·(1 − pE), Occ ← Occ·(1 + pO), both from 1, combined "using logarithms
 // and addition". The transcription prints log10(Emp) * log10(Occ), which is ≤ 0 whatever the
 // evidence; the notes fix it as Map = log10(Emp) + log10(Occ), cut to [−2, +2].

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The concrete update rules. Only the registry and tests need these names. Each names what it
 // keeps per grid cell (its planes: grid.h, CellLayout).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // An update rule says how a reading's evidence enters a cell (docs/models.md, "Update rules"): it
 // declares what it keeps per cell and the value of a cell nobody has seen, and folds footprints

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Differential-drive motion: paths made of constant-curvature pieces, driven at a speed and a turn
 // rate (Trajectory), and the odometry such a robot computes from its two wheel encoders, with the

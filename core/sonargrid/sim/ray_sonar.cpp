@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/sim/ray_sonar.h"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A minimal, deterministic sonar simulator: the world is a set of line segments, each transducer's
 // cone is sampled by a fan of rays, and every physical effect (cone, specular reflection, range

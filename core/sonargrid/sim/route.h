@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // Routes the simulated robot drives (docs/simulator.md, "Routes"): a polyline of waypoints turned
 // into a drivable path with rounded corners, the back-and-forth lanes of a U-turn sweep (paper 002

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The full simulator behind `sonargrid-cli simulate` (docs/simulator.md): a world from a reference
 // map, a route, a differential-drive robot with optional odometry drift, and its sonar ring fired

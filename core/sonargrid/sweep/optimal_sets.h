@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // How paper 002 picks "the optimal parameter set" from a sweep (§5), each rule with the paragraph
 // that defines it:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/sweep/parameter_sweep.h"
 
 #include <algorithm>

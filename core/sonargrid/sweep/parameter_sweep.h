@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A parameter sweep: one model × rule mapped once per parameter set over the same log, each map
 // judged without a reference by the three goodness measures of paper 002 §5 (VSDNS, derivative
