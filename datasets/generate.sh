@@ -1,4 +1,5 @@
 #!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Regenerates the simulated datasets (datasets/README.md) with sonargrid-cli simulate and fixed
 # seeds. Every log depends only on these commands, the world and route files and the program:
 # tst_cli_simulate regenerates raschke-single and compares bytes.
