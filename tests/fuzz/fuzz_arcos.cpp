@@ -75,7 +75,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ClientSession session({}, quiet);
   session.start(0.0);
   for (std::size_t at = 0; at < bytes.size(); at += piece) {
-    session.receive(bytes.subspan(at, std::min(piece, bytes.size() - at)), 0.01 * static_cast<double>(at));
+    session.receive(bytes.subspan(at, std::min(piece, bytes.size() - at)),
+                    0.01 * static_cast<double>(at));
     session.tick(0.01 * static_cast<double>(at));
   }
 
