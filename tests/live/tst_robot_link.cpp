@@ -15,6 +15,7 @@
 #include "sonargrid/arcos/messages.h"
 #include "sonargrid/live/arcos_server.h"
 #include "sonargrid/live/robot_link.h"
+#include "sonargrid/scan_source.h"
 #include "sonargrid/sim/ray_sonar.h"
 
 namespace arcos = sg::arcos;
@@ -282,7 +283,8 @@ class TstRobotLink : public QObject {
   }
 
   // A robot that hangs up mid-stream: reported with the transport's reason, reconnected, and the
-  // scans go on in one time order.
+  // scans go on in one time order, appended to a live ScanSource (DESIGN.md: RobotLink ->
+  // ScanSource) as the app will append them, across the reconnection.
   void hangUpIsReportedAndReconnected() {
     FakeRobot fake;
     int sent = 0;
@@ -297,6 +299,15 @@ class TstRobotLink : public QObject {
     QSignalSpy scans(&link, &sg::live::RobotLink::scanReceived);
     QSignalSpy connected(&link, &sg::live::RobotLink::connected);
     QSignalSpy disconnected(&link, &sg::live::RobotLink::disconnected);
+    sg::ScanSource source("live", arcos::pioneer3dxParameters().ring);
+    std::string appendError;
+    QObject::connect(&link, &sg::live::RobotLink::scanReceived, [&](const sg::Scan& s) {
+      try {
+        source.append({s});
+      } catch (const sg::ScanSourceError& e) {
+        appendError = e.what();
+      }
+    });
     link.open();
     QTRY_VERIFY_WITH_TIMEOUT(scans.size() >= 5, 5000);
     fake.client->abort();
@@ -315,6 +326,11 @@ class TstRobotLink : public QObject {
     QCOMPARE(link.counters().lostConnections, std::uint64_t{1});
     QCOMPARE(link.counters().reconnects, std::uint64_t{1});
     link.close();
+    QVERIFY2(appendError.empty(), appendError.c_str());
+    const sg::ScanPrefix all = source.prefix();
+    QCOMPARE(static_cast<qsizetype>(all.size()), scans.size());
+    QVERIFY(!all.complete());
+    QVERIFY(all.readingsInTimeOrder());
   }
 
   // The virtual robot's server: one client at a time (a second is refused until the first
