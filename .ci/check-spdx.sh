@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: GPL-3.0-or-later
 # Every tracked source, header, CMake and shell file names its licence in an SPDX line near its
 # top (LICENSE says which part of the tree is under which licence).
 set -euo pipefail
