@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // An immutable snapshot of a built map: what views, exporters and metrics read. Every update rule
-// yields the same layers (notes/models-and-metrics.md, "Certainty values").
+// yields the same layers (docs/models.md; paper 000 §4.3).
 
 #include <cstdint>
 #include <string>

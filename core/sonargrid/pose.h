@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // A planar pose (x, y, heading) in the world frame: metres and radians, counter-clockwise angles,
-// x forward on the robot (notes/models-and-metrics.md, "Conventions").
+// x forward on the robot (docs/models.md, conventions).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>

@@ -346,7 +346,7 @@ void TstGeometry::wrapAngle() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Sonar rings (notes/formats-and-protocols.md, "Sonar geometry": x mm, y mm, heading deg)
+// Sonar rings (the published ring geometry, docs/formats.md: x mm, y mm, heading deg)
 
 namespace {
 

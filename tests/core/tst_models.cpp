@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Inverse sensor models at chosen (δ, θ) points. Every expected value is worked by hand from the
-// formula the comment names (papers in shared/papers, readings in notes/models-and-metrics.md).
+// formula the comment names (the papers, read as docs/models.md says).
 
 #include <QtTest>
 #include <cmath>

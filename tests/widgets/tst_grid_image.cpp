@@ -51,7 +51,7 @@ class TestGridImage : public QObject {
 
  private slots:
   void paletteHasSixteenDistinctLevels() {
-    // notes/models-and-metrics.md: 16 display levels; each must be told apart on screen.
+    // Paper 000 §4.3: 16 display levels; each must be told apart on screen.
     QSet<QRgb> colours;
     for (int k = 0; k < kLevels; ++k) colours.insert(rgbOf(k));
     QCOMPARE(colours.size(), 16);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// CARMEN logs (notes/formats-and-protocols.md, "CARMEN log"; docs/formats.md, "CARMEN"): one
+// CARMEN logs (docs/formats.md, "CARMEN"): one
 // message a line, metres and radians. ODOM gives the odometry pose, TRUEPOS the true pose, and each
 // SONAR message one scan of every sonar with its mounting pose, so the ring comes from the log
 // itself. Every other message (PARAM, SYNC, FLASER...) is skipped and counted.

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Konolige's multiple-target model (paper 001 §2.2, after Konolige 1997), in the reading fixed by
-// notes/models-and-metrics.md: the printed ratio of densities becomes the likelihood ratio
+// Konolige's multiple-target model (paper 001 §2.2, after Konolige 1997), in the reading docs/models.md
+// gives ("Konolige"): the printed ratio of densities becomes the likelihood ratio
 //   λ = p(D | cell occupied) / p(D | cell empty)
 // of the first return D. An occupied cell at range r and angle θ echoes with probability
 // g = a(r)·exp(-θ²/2σ²) (σ = ω/2, the printed lobe width), at a range spread N(r, d(r)²); false
@@ -156,8 +156,7 @@ const ModelInfo& KonoligeModel::staticInfo() {
   static const ModelInfo info{
       "konolige",
       "Konolige multiple-target model",
-      "paper 001 §2.2 (after Konolige 1997); likelihood-ratio reading of "
-      "notes/models-and-metrics.md",
+      "paper 001 §2.2 (after Konolige 1997); likelihood-ratio reading (docs/models.md)",
       {
           {"omega", "ω", "deg", 5.0, 90.0, 25.0, "paper 001 §2.2 (lobe width follows the aperture)",
            "Full cone angle; the angular lobe is a Gaussian of σ = ω/2, cut at ±ω/2."},

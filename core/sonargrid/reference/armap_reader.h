@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // ArMap `.map` files (MobileRobots / Adept ARIA, MobileSim, AMRISim) as reference maps
-// (notes/formats-and-protocols.md, "ArMap"). Only the LINES section is used: each wall segment
+// (docs/formats.md, "ArMap"). Only the LINES section is used: each wall segment
 // `x1 y1 x2 y2` (integer millimetres) becomes an open two-corner object named "line N" (N counts
 // the segments from 1, in file order). DATA points are laser returns, not measured geometry, and
 // are skipped. Header lines (`Key: values`) are not interpreted: the Num* counts are often wrong

@@ -21,7 +21,7 @@ const RuleInfo& BayesRule::likelihoodInfo() {
   static const RuleInfo info{
       "bayes-recursive",
       "Recursive Bayes (paper 002)",
-      "paper 002 eqs 5–6 (standard recursive form; notes/models-and-metrics.md)",
+      "paper 002 eqs 5–6 (standard recursive form; docs/models.md)",
       "p(occupied)",
       {priorSpec("paper 002 eq 5 (P(H))")}};
   return info;

@@ -18,7 +18,7 @@ const RuleInfo& LogRule::staticInfo() {
   static const RuleInfo info{
       "log",
       "Log update (paper 001)",
-      "paper 001 §3.3; sum of logs per notes/models-and-metrics.md",
+      "paper 001 §3.3; sum of logs (docs/models.md)",
       "log10(Emp) + log10(Occ), cut to [cut_min, cut_max]",
       {
           {"cut_min", "Map_min", "", -10.0, -0.1, -2.0, "paper 001 §3.3 (cut-offs [−2, +2])",
