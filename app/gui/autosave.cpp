@@ -32,12 +32,15 @@ Autosave::Autosave(Document* document, std::function<ProjectState()> state, QObj
     : QObject(parent), document_(document), state_(std::move(state)), timer_(new QTimer(this)) {
   timer_->setInterval(intervalMs());
   connect(timer_, &QTimer::timeout, this, &Autosave::saveNow);
-  // The clock runs only while there is something unsaved; saving stops it and removes the file.
+  // The clock runs only while there is something unsaved. Back at the saved state (a save, or
+  // undo to it) there is nothing to recover: the file goes.
   connect(document_, &Document::modifiedChanged, this, [this](bool modified) {
-    if (modified && enabled_)
+    if (modified && enabled_) {
       timer_->start();
-    else if (!modified)
+    } else if (!modified) {
       timer_->stop();
+      remove();
+    }
   });
 }
 

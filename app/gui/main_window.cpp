@@ -365,48 +365,6 @@ void MainWindow::onTimeChanged(double t, std::size_t) {
   remap_->setUntil(t);
 }
 
-void MainWindow::showCurrentScan() {
-  const Dataset* run = document_->dataset().get();
-  if (!run) return;
-  const PoseSource pose = document_->mapperSettings().pose;
-  scanShownPose_ = pose;
-  const std::size_t scan = timeline_->currentScan();
-  view_->setRobotAt(run, pose, scan);
-  const std::vector<Reading>& readings = run->scans[scan].readings;
-  // The user's sonar while this scan has a reading of it, else the first reading with an echo.
-  const Reading* shown = nullptr;
-  for (const Reading& r : readings)
-    if (chosenSonar_ == static_cast<std::size_t>(r.sonar)) shown = &r;
-  for (const Reading& r : readings)
-    if (!shown && r.echo()) shown = &r;
-  if (!shown && !readings.empty()) shown = &readings.front();
-
-  const QSignalBlocker block(readingChooser_);
-  readingChooser_->clear();
-  for (const Reading& r : readings) {
-    readingChooser_->addItem(r.echo() ? tr("sonar %1: %2 m").arg(r.sonar).arg(r.range, 0, 'f', 2)
-                                      : tr("sonar %1: no echo").arg(r.sonar),
-                             QVariant::fromValue(static_cast<std::size_t>(r.sonar)));
-    if (&r == shown) readingChooser_->setCurrentIndex(readingChooser_->count() - 1);
-  }
-  readingChooser_->setEnabled(!readings.empty());
-  beamSonar_ = shown ? std::optional<std::size_t>(shown->sonar) : std::nullopt;
-  view_->setHighlightedSonar(beamSonar_);
-  // No echo: the model's picture of a reading at the maximum range.
-  if (shown) beamView_->setRange(shown->echo() ? shown->range : run->ring.maxRange);
-}
-
-bool MainWindow::chooseBeamSonar(std::size_t sonar) {
-  if (!document_->dataset()) return false;
-  for (const Reading& r : document_->dataset()->scans[timeline_->currentScan()].readings)
-    if (r.sonar == sonar) {
-      chosenSonar_ = sonar;
-      showCurrentScan();
-      return true;
-    }
-  return false;
-}
-
 void MainWindow::updateSummary() {
   if (!summary_) return;
   QString html;

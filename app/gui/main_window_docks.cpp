@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The window's docks: timeline, map summary with the cell size, parameter panel, beam model.
+// The window's docks: timeline, map summary with the cell size, parameter panel, beam model (and
+// the reading of the current scan it shows).
 #include <QApplication>
 #include <QComboBox>
 #include <QDockWidget>
@@ -12,6 +13,7 @@
 
 #include "beam_model_view.h"
 #include "document.h"
+#include "grid_view.h"
 #include "main_window.h"
 #include "parameter_panel.h"
 #include "timeline.h"
@@ -130,6 +132,48 @@ void MainWindow::restoreWindowState() {
   QSettings s;
   if (!restoreGeometry(s.value("window/geometry").toByteArray())) resize(1280, 800);
   restoreState(s.value("window/state").toByteArray());
+}
+
+void MainWindow::showCurrentScan() {
+  const Dataset* run = document_->dataset().get();
+  if (!run) return;
+  const PoseSource pose = document_->mapperSettings().pose;
+  scanShownPose_ = pose;
+  const std::size_t scan = timeline_->currentScan();
+  view_->setRobotAt(run, pose, scan);
+  const std::vector<Reading>& readings = run->scans[scan].readings;
+  // The user's sonar while this scan has a reading of it, else the first reading with an echo.
+  const Reading* shown = nullptr;
+  for (const Reading& r : readings)
+    if (chosenSonar_ == static_cast<std::size_t>(r.sonar)) shown = &r;
+  for (const Reading& r : readings)
+    if (!shown && r.echo()) shown = &r;
+  if (!shown && !readings.empty()) shown = &readings.front();
+
+  const QSignalBlocker block(readingChooser_);
+  readingChooser_->clear();
+  for (const Reading& r : readings) {
+    readingChooser_->addItem(r.echo() ? tr("sonar %1: %2 m").arg(r.sonar).arg(r.range, 0, 'f', 2)
+                                      : tr("sonar %1: no echo").arg(r.sonar),
+                             QVariant::fromValue(static_cast<std::size_t>(r.sonar)));
+    if (&r == shown) readingChooser_->setCurrentIndex(readingChooser_->count() - 1);
+  }
+  readingChooser_->setEnabled(!readings.empty());
+  beamSonar_ = shown ? std::optional<std::size_t>(shown->sonar) : std::nullopt;
+  view_->setHighlightedSonar(beamSonar_);
+  // No echo: the model's picture of a reading at the maximum range.
+  if (shown) beamView_->setRange(shown->echo() ? shown->range : run->ring.maxRange);
+}
+
+bool MainWindow::chooseBeamSonar(std::size_t sonar) {
+  if (!document_->dataset()) return false;
+  for (const Reading& r : document_->dataset()->scans[timeline_->currentScan()].readings)
+    if (r.sonar == sonar) {
+      chosenSonar_ = sonar;
+      showCurrentScan();
+      return true;
+    }
+  return false;
 }
 
 }  // namespace sg::app
