@@ -3,6 +3,7 @@
 //
 //   sonargrid [LOG] [--reference REF] [--model M --rule R --set k=v ...] [--pose odom|truth]
 //             [--cell METRES] [--raster] [--screenshot FILE]
+//   sonargrid PROJECT.sgproj [--raster] [--screenshot FILE]
 
 #include <QApplication>
 #include <QCommandLineParser>
@@ -16,6 +17,7 @@
 #include "export_file.h"
 #include "main_window.h"
 #include "preferences.h"
+#include "project_file.h"
 #include "sonargrid/concurrency.h"
 #include "sonargrid/models/sensor_model.h"
 #include "sonargrid/rules/update_rule.h"
@@ -94,8 +96,10 @@ int main(int argc, char** argv) {
       QStringLiteral("SonarGrid: build and compare sonar occupancy grids."));
   parser.addHelpOption();
   parser.addVersionOption();
-  parser.addPositionalArgument(QStringLiteral("LOG"), QStringLiteral("A .sglog log to open."),
-                               QStringLiteral("[LOG]"));
+  parser.addPositionalArgument(QStringLiteral("LOG"),
+                               QStringLiteral("A log (.sglog, CARMEN, Player, CSV) or a project "
+                                              "(.sgproj) to open."),
+                               QStringLiteral("[LOG | PROJECT.sgproj]"));
   parser.addOptions({
       {QStringLiteral("reference"), QStringLiteral("Reference map (.json, .map, .yaml)."),
        QStringLiteral("REF")},
@@ -124,6 +128,10 @@ int main(int argc, char** argv) {
   }
   sg::app::applyMappingThreads();
 
+  const QString file =
+      parser.positionalArguments().isEmpty() ? QString() : parser.positionalArguments().front();
+  const bool isProject = QFileInfo(file).suffix().compare(QLatin1String(sg::app::kProjectSuffix),
+                                                          Qt::CaseInsensitive) == 0;
   sg::MapperSettings settings;
   double cell = sg::app::MainWindow::lastCellSize();
   try {
@@ -138,7 +146,13 @@ int main(int argc, char** argv) {
                              .arg(parser.value("cell"))};
     }
     if (parser.isSet("screenshot") && parser.positionalArguments().isEmpty())
-      throw UsageError{QStringLiteral("--screenshot needs a LOG to map")};
+      throw UsageError{QStringLiteral("--screenshot needs a LOG or a PROJECT to map")};
+    if (isProject)
+      for (const char* option : {"reference", "model", "rule", "set", "pose", "cell"})
+        if (parser.isSet(QString::fromLatin1(option)))
+          throw UsageError{QStringLiteral("--%1 cannot be given with a project: the project "
+                                          "holds it (change it in the window and save)")
+                               .arg(QString::fromLatin1(option))};
   } catch (const UsageError& e) {
     std::cerr << "sonargrid: " << e.message.toStdString() << '\n';
     return 2;
@@ -148,14 +162,22 @@ int main(int argc, char** argv) {
   sg::app::MainWindow window(parser.isSet("raster") ? sg::ui::GridView::Backend::Raster
                                                     : sg::ui::GridView::Backend::Automatic);
   if (screenshot) window.resize(1280, 800);
+  // Settings on the command line are edits of the document that starts from the last session's
+  // choices (so a --set that changes something leaves unsaved changes, autosaved as any edit).
   window.setCellSize(cell);
   window.setMapperSettings(settings);
+  // A reference given with a log is drawn for that log: the new log does not close it.
   if (parser.isSet("reference") && !window.openReference(parser.value("reference"), screenshot))
     if (screenshot) return 2;
-  if (!parser.positionalArguments().isEmpty() &&
-      !window.openLog(parser.positionalArguments().front(), screenshot))
+  if (isProject) {
+    if (!window.openProject(file, screenshot) && screenshot) return 2;
+  } else if (!file.isEmpty() && !window.openLog(file, screenshot)) {
     if (screenshot) return 2;
+  }
   window.show();
+  // A crashed session's autosave: offered when the user opened nothing else (SONARGRID_RECOVER
+  // answers without a dialog; without a display nothing blocks).
+  if (!screenshot && file.isEmpty()) window.offerRecovery();
 
   if (screenshot) {
     if (!window.waitForMap(120000)) {
@@ -164,23 +186,23 @@ int main(int argc, char** argv) {
     }
     // Let the window lay out and paint the new map once before grabbing it.
     for (int i = 0; i < 5; ++i) QApplication::processEvents(QEventLoop::AllEvents, 20);
-    const QString file = parser.value("screenshot");
+    const QString shotFile = parser.value("screenshot");
     // On a real display, take the pixels the X server shows (what the user sees, the OpenGL
     // surface included); elsewhere let the widgets render themselves.
     const bool onScreen = QGuiApplication::platformName() == QLatin1String("xcb");
     const QPixmap shot = onScreen ? window.screen()->grabWindow(window.winId()) : window.grab();
     // The format follows the name's suffix, as QPixmap::save(file) would choose it.
-    const QString suffix = QFileInfo(file).suffix();
+    const QString suffix = QFileInfo(shotFile).suffix();
     const QByteArray format = suffix.isEmpty() ? QByteArray("PNG") : suffix.toLatin1();
     const QByteArray bytes = sg::app::encodedImage(shot.toImage(), format.constData());
-    const QString error = bytes.isEmpty()
-                              ? file + QStringLiteral(": cannot encode the screenshot as ") + format
-                              : sg::app::writeFileBytes(file, bytes);
+    const QString error =
+        bytes.isEmpty() ? shotFile + QStringLiteral(": cannot encode the screenshot as ") + format
+                        : sg::app::writeFileBytes(shotFile, bytes);
     if (!error.isEmpty()) {
       std::cerr << "sonargrid: " << error.toStdString() << '\n';
       return 1;
     }
-    std::cout << "wrote " << file.toStdString() << '\n';
+    std::cout << "wrote " << shotFile.toStdString() << '\n';
     return 0;
   }
   return app.exec();

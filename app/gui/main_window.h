@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// The desktop app's window: the grid view in the centre, docks around it, the File / View /
-// Mapping / Help menus, and the wiring between the document (log, reference, mapper settings), the
-// RemapController and the views. The window never parses a file or evaluates a model: the core
-// does (DESIGN.md, "Data flow").
+// The desktop app's window: wiring. The Document (document.h) holds what the user works on; the
+// window connects its change signals to the grid view, the RemapController, the docks and the
+// menus, and the user's gestures back to Document edits. The window never parses a file or
+// evaluates a model: the core does (DESIGN.md, "Data flow"). Its parts live by responsibility in
+// main_window_*.cpp (menus, docks, projects, exports), log_loader.cpp and help_dialogs.cpp.
 
 #include <QElapsedTimer>
 #include <QMainWindow>
@@ -13,12 +14,14 @@
 #include <vector>
 
 #include "grid_view.h"
+#include "project.h"
 #include "sonargrid/dataset.h"
 #include "sonargrid/io/log_options.h"
 #include "sonargrid/mapper.h"
 #include "sonargrid/reference/reference_map.h"
 
 class QAction;
+class QDoubleSpinBox;
 class QActionGroup;
 class QComboBox;
 class QLabel;
@@ -36,6 +39,10 @@ class Timeline;
 }  // namespace sg::ui
 
 namespace sg::app {
+
+class Autosave;
+class Document;
+class LogLoader;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -57,21 +64,41 @@ class MainWindow : public QMainWindow {
   void loadLog(const QString& path, const sg::LogOptions& options, bool quiet = false);
   // Abandons the running load at once (loadCancelled); the worker stops at its next block.
   void cancelLoad();
-  bool loading() const { return load_ != nullptr; }
+  bool loading() const;
   // Blocks (running the event loop) until no load is running; true when the last one loaded.
   // timeoutMs < 0 waits as long as the load takes.
   bool waitForLoad(int timeoutMs = -1);
   // Asks for a CSV file's columns (CsvImportDialog) and loads it; false when the user cancels.
   bool importCsv(const QString& path);
-  const std::shared_ptr<const sg::Dataset>& dataset() const { return data_; }
-  const QString& logPath() const { return logPath_; }
+  const std::shared_ptr<const sg::Dataset>& dataset() const;
+  const QString& logPath() const;
+  // Reads a reference map and makes it the document's (one undo step).
   bool openReference(const QString& path, bool quiet = false);
 
-  // Model, rule, parameters and pose: re-maps the log (not when they equal the settings of the
-  // current map), and shows them in the menus, the title, the parameter panel and the beam view.
+  // Model, rule, parameters and pose, as one undoable edit of the document: re-maps the log (not
+  // when they equal the settings of the current map), and shows them in the menus, the title, the
+  // parameter panel and the beam view.
   void setMapperSettings(const sg::MapperSettings& settings);
-  const sg::MapperSettings& mapperSettings() const { return settings_; }
+  const sg::MapperSettings& mapperSettings() const;
+  // Cell size in metres, clamped to [0.005, 1]; undoable; re-maps.
   void setCellSize(double metres);
+
+  // What the user works on: logs, reference, settings, cell size, overlays, view, pinned rows,
+  // sweep settings, and the undo stack every edit goes through.
+  Document* document() const { return document_; }
+
+  // Opens a .sgproj project: its log is loaded first, and only when that succeeds does the project
+  // replace the document (a bad project or log leaves the current one). `quiet` as openLog.
+  bool openProject(const QString& path, bool quiet = false);
+  // Saves to `path` (atomically); false, after saying why, when it cannot be written.
+  bool saveProjectAs(const QString& path, bool quiet = false);
+  // Saves to the project's file, asking for a name when it has none.
+  bool saveProject();
+  Autosave* autosave() const { return autosave_; }
+  // Crashed sessions' autosaves: `answer` "yes" opens the newest (the document stays modified),
+  // "no" deletes them, "keep" leaves them; empty asks (or, without a display, reads
+  // SONARGRID_RECOVER, else keeps). True when one was recovered.
+  bool offerRecovery(const QString& answer = {});
 
   ui::GridView* gridView() const { return view_; }
   ui::Timeline* timeline() const { return timeline_; }
@@ -105,26 +132,21 @@ class MainWindow : public QMainWindow {
 
  protected:
   void closeEvent(QCloseEvent* event) override;
+  bool eventFilter(QObject* watched, QEvent* event) override;
   void dragEnterEvent(QDragEnterEvent* event) override;
   void dropEvent(QDropEvent* event) override;
 
  private:
-  void createActions();
-  void createMenus();
-  // Every dock of the window is made here (the parameter panel joins them).
-  void createDocks();
-  void restoreWindowState();
-  void rememberRecent(const QString& path);
-  void rebuildRecentMenu();
-  void rebuildMappingMenu();
-  void chooseModel(const QString& model);
-  void chooseRule(const QString& rule);
-  void choosePose(sg::PoseSource pose);
-  // Shows settings_ in the menus, title, summary, panel and beam view, and remembers it soon.
+  // main_window.cpp: the wiring between the document and the views.
+  void connectDocument();
+  void onSettingsChanged();
+  void onCellSizeChanged(double metres);
+  void onReferenceChanged();
+  // Shows the document's settings in the menus, title, summary, panel and beam view, and
+  // remembers them soon.
   void showSettings();
-  // Hands settings_ to the beam view (showSettings defers it).
   void showBeamSettings();
-  // Writes settings_ to QSettings now.
+  // Writes the settings to QSettings now (what the next session starts with).
   void rememberSettings();
   void updateSummary();
   void updateTitle();
@@ -133,37 +155,60 @@ class MainWindow : public QMainWindow {
   // The robot, beams and beam-view reading of the timeline's current scan.
   void showCurrentScan();
   bool reportError(const QString& title, const QString& message, bool quiet);
-
-  struct LoadJob;
-  // On the GUI thread, when a worker has finished `job` (superseded jobs are ignored).
-  void finishLoad(const std::shared_ptr<LoadJob>& job, std::shared_ptr<const sg::Dataset> dataset,
-                  const QString& error, bool cancelled);
-  // Makes `loaded` the document: timeline, views, re-map.
+  // Makes `dataset` the document's log: timeline, views, re-map (or a pending project's state).
   void adoptLog(const QString& path, std::shared_ptr<const sg::Dataset> dataset);
-  void showLoadProgress(const std::shared_ptr<LoadJob>& job, int percent);
+  void onLoadFailed(const QString& path, const QString& message, bool quiet);
   void hideLoadProgress();
 
+  // main_window_menus.cpp: actions, menus, recent files, drops, open dialogs.
+  void createActions();
+  void createMenus();
+  void rememberRecent(const QString& path);
+  void rebuildRecentMenu();
+  void rebuildMappingMenu();
+  void chooseModel(const QString& model);
+  void chooseRule(const QString& rule);
+  void choosePose(sg::PoseSource pose);
   void openLogDialog();
   void importCsvDialog();
   void openReferenceDialog();
+  void openProjectDialog();
   void openExample();
-  void exportViewPng();
-  void exportViewSvg();
+  void askCellSize();
+  // Opens a file by its kind: project, reference or log.
+  void openAny(const QString& path);
+
+  // main_window_docks.cpp: every dock of the window.
+  void createDocks();
+  void restoreWindowState();
+
+  // main_window_export.cpp
   // Waits for a re-map in progress; false (and says so) unless the view shows the full map of the
   // current settings, not a preview.
   bool mapComplete();
+  void exportViewPng();
+  void exportViewSvg();
   void exportMapPng();
   void exportRosMap();
-  void showUserGuide();
-  void showShortcuts();
-  void showAbout();
   QString saveFileName(const QString& title, const QString& filter, const QString& suffix);
 
+  // main_window_project.cpp
+  // The document's state with the view as shown now (what a project file saves).
+  ProjectState projectState() const;
+  // Makes a read project the document, once its log (if any) is loaded.
+  void adoptProject(const QString& path, const ProjectState& state, bool modified, bool quiet);
+  // Unsaved changes: Save, Discard or Cancel. True when the window may close.
+  bool maybeSave();
+
+  Document* document_;
+  LogLoader* loader_;
+  Autosave* autosave_ = nullptr;
   ui::GridView* view_;
   ui::Timeline* timeline_ = nullptr;
   ui::ParameterPanel* panel_ = nullptr;
   ui::BeamModelView* beamView_ = nullptr;
   QComboBox* readingChooser_ = nullptr;
+  QDoubleSpinBox* cellSpin_ = nullptr;
   std::optional<std::size_t> chosenSonar_;  // the user's pick; none: the first reading with echo
   std::optional<std::size_t> beamSonar_;    // what the beam view shows now
   ui::RemapController* remap_;
@@ -174,16 +219,20 @@ class MainWindow : public QMainWindow {
   QPushButton* loadCancelButton_ = nullptr;
   QAction* cancelLoadAction_ = nullptr;
   QAction* importCsvAction_ = nullptr;
-  std::shared_ptr<LoadJob> load_;  // the running load, if any
-  std::vector<QThread*> loaders_;  // workers still running (a cancelled one ends soon)
   bool lastLoadSucceeded_ = false;
+  // A project whose log is loading: it becomes the document when the log has loaded.
+  struct PendingProject {
+    QString path;
+    QString logPath;
+    std::shared_ptr<ProjectState> state;
+    bool modified = false;
+  };
+  std::optional<PendingProject> pendingProject_;
+  std::optional<ui::ViewTransform> pendingView_;  // a project's view, shown with its first map
+  bool adopting_ = false;  // adoptLog is changing the document: it starts the re-map itself
 
-  std::shared_ptr<const sg::Dataset> data_;
-  QString logPath_;
-  std::optional<sg::ReferenceMap> reference_;
-  QString referencePath_;
-  sg::MapperSettings settings_;
-  sg::MapperSettings menuSettings_;  // what the Mapping menu was last built for
+  sg::MapperSettings menuSettings_;    // what the Mapping menu was last built for
+  sg::MapperSettings mappedSettings_;  // what the remap controller was last given
   QTimer* rememberSettingsTimer_ = nullptr;
   QTimer* beamSettingsTimer_ = nullptr;
   bool beamSettingsPending_ = false;
@@ -195,7 +244,6 @@ class MainWindow : public QMainWindow {
   static constexpr int kSummaryIntervalMs = 250;
   static constexpr int kPreviewFactor = 2;
   static constexpr double kPreviewAboveMs = 30.0;
-  double cellSize_ = 0.05;
   double lastRemapMs_ = 0.0;
   QStringList recent_;
 
@@ -205,6 +253,12 @@ class MainWindow : public QMainWindow {
   QActionGroup* poseGroup_ = nullptr;
   QAction* openAction_ = nullptr;
   QAction* openReferenceAction_ = nullptr;
+  QAction* openProjectAction_ = nullptr;
+  QAction* saveProjectAction_ = nullptr;
+  QAction* saveProjectAsAction_ = nullptr;
+  QAction* undoAction_ = nullptr;
+  QAction* redoAction_ = nullptr;
+  QAction* cellSizeAction_ = nullptr;
   QAction* exportViewPngAction_ = nullptr;
   QAction* exportViewSvgAction_ = nullptr;
   QAction* exportMapPngAction_ = nullptr;

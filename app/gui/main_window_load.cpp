@@ -1,0 +1,188 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Opening logs and reference maps: the load on a worker (LogLoader) with its progress in the status
+// bar, and adopting a loaded log (or a project waiting for its log) as the document's.
+#include <QAction>
+#include <QCoreApplication>
+#include <QDir>
+#include <QFile>
+#include <QFileInfo>
+#include <QLabel>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSettings>
+#include <QStatusBar>
+
+#include "beam_model_view.h"
+#include "csv_import_dialog.h"
+#include "document.h"
+#include "log_loader.h"
+#include "main_window.h"
+#include "remap_controller.h"
+#include "sonargrid/io/log_reader.h"
+#include "sonargrid/reference/read_reference.h"
+#include "timeline.h"
+
+namespace sg::app {
+namespace {
+
+// A .csv / .txt / .tsv file whose content is not another format: it needs a column mapping.
+bool needsColumns(const QString& path) {
+  const QString suffix = QFileInfo(path).suffix().toLower();
+  if (suffix != QLatin1String("csv") && suffix != QLatin1String("txt") &&
+      suffix != QLatin1String("tsv"))
+    return false;
+  QFile f(path);
+  if (!f.open(QIODevice::ReadOnly)) return false;  // readLog names the file and the problem
+  const QByteArray head = f.read(static_cast<qint64>(kDetectBytes));
+  const LogFormat detected = detectLogFormat(std::string_view(head.constData(), head.size()));
+  return detected == LogFormat::Csv || detected == LogFormat::Auto;
+}
+
+}  // namespace
+
+bool MainWindow::openLog(const QString& path, bool quiet) {
+  if (!quiet && needsColumns(path)) return importCsv(path);
+  loadLog(path, LogOptions{}, quiet);
+  return !quiet || waitForLoad();
+}
+
+bool MainWindow::importCsv(const QString& path) {
+  ui::CsvImportDialog dialog(path, this);
+  if (dialog.exec() != QDialog::Accepted || !dialog.options()) return false;
+  loadLog(path, *dialog.options());
+  return true;
+}
+
+void MainWindow::loadLog(const QString& path, const LogOptions& options, bool quiet) {
+  cancelLoad();
+  const MapperSettings& settings = pendingProject_ && pendingProject_->logPath == path
+                                       ? pendingProject_->state->settings
+                                       : document_->mapperSettings();
+  const double cell = pendingProject_ && pendingProject_->logPath == path
+                          ? pendingProject_->state->cellSize
+                          : document_->cellSize();
+  loader_->start(path, options, settings.pose, cell, quiet);
+  loadBar_->setValue(0);
+  const QString name = loadBar_->fontMetrics().elidedText(QFileInfo(path).fileName(),
+                                                          Qt::ElideMiddle, loadBar_->width() / 2);
+  loadBar_->setFormat(tr("Loading %1: %p%").arg(name));
+  loadBar_->setVisible(true);
+  loadCancelButton_->setVisible(true);
+  cancelLoadAction_->setEnabled(true);
+}
+
+void MainWindow::cancelLoad() {
+  const QString path = loader_->cancel();
+  if (path.isEmpty()) return;
+  if (pendingProject_ && pendingProject_->logPath == path) {
+    // Loading a project's log is how the project opens: a new load replaces that wish too.
+    pendingProject_.reset();
+  }
+  hideLoadProgress();
+  statusBar()->showMessage(tr("Loading %1 cancelled").arg(QFileInfo(path).fileName()), 5000);
+  emit loadCancelled(path);
+}
+
+bool MainWindow::waitForLoad(int timeoutMs) {
+  QElapsedTimer clock;
+  clock.start();
+  while (loader_->busy() && (timeoutMs < 0 || clock.elapsed() < timeoutMs))
+    QCoreApplication::processEvents(QEventLoop::AllEvents | QEventLoop::WaitForMoreEvents, 50);
+  return !loader_->busy() && lastLoadSucceeded_;
+}
+
+void MainWindow::hideLoadProgress() {
+  loadBar_->setVisible(false);
+  loadCancelButton_->setVisible(false);
+  cancelLoadAction_->setEnabled(false);
+}
+
+void MainWindow::onLoadFailed(const QString& path, const QString& message, bool quiet) {
+  hideLoadProgress();
+  lastLoadSucceeded_ = false;
+  QString shown = message;
+  if (pendingProject_ && pendingProject_->logPath == path) {
+    shown = tr("%1: its log cannot be opened, the project is not opened: %2")
+                .arg(QDir::toNativeSeparators(pendingProject_->path), message);
+    pendingProject_.reset();
+  }
+  reportError(tr("Cannot open log"), shown, quiet);
+  emit loadFailed(path, message);
+}
+
+void MainWindow::adoptLog(const QString& path, std::shared_ptr<const Dataset> dataset) {
+  adopting_ = true;
+  if (pendingProject_ && pendingProject_->logPath == path) {
+    const PendingProject project = *std::exchange(pendingProject_, std::nullopt);
+    document_->restore(*project.state, project.modified);
+    document_->setProjectPath(project.path);
+    document_->setLog(path, std::move(dataset));
+    pendingView_ = project.state->view;
+  } else {
+    pendingProject_.reset();
+    document_->setLog(path, std::move(dataset));
+    // A reference drawn for another log does not describe this one: it goes, as one undo step
+    // (Edit ▸ Undo keeps it after all).
+    if (document_->reference() && !document_->referenceLog().isEmpty() &&
+        document_->referenceLog() != path) {
+      document_->setReference(std::nullopt, {});
+      statusBar()->showMessage(
+          tr("Reference map closed: it was drawn for another log (Edit ▸ Undo keeps it)"), 15000);
+    }
+    if (document_->reference()) document_->setReferenceLog(path);
+    // A reference map beside the log (room.sglog + room.json) is taken along unless one is
+    // loaded; part of opening the log, not an edit.
+    const QString sibling = QFileInfo(path).path() + QDir::separator() +
+                            QFileInfo(path).completeBaseName() + QStringLiteral(".json");
+    if (!document_->reference() && QFileInfo::exists(sibling)) {
+      try {
+        document_->applyReference(readReference(QDir::toNativeSeparators(sibling).toStdString()),
+                                  sibling, false);
+        document_->setReferenceLog(path);
+      } catch (const std::exception& e) {
+        reportError(tr("Cannot open reference map"), QString::fromStdString(e.what()), true);
+      }
+    }
+  }
+  const Dataset& run = *document_->dataset();
+  rememberRecent(document_->projectPath().isEmpty() ? path : document_->projectPath());
+  QSettings().setValue("files/lastDirectory", QFileInfo(path).absolutePath());
+
+  if (document_->mapperSettings().pose == PoseSource::Truth && !run.hasTruth()) {
+    MapperSettings s = document_->mapperSettings();
+    s.pose = PoseSource::Odometry;
+    document_->adjustMapperSettings(s);
+  }
+  adopting_ = false;
+  std::vector<double> times;
+  double end = 0.0;
+  times.reserve(run.scans.size());
+  for (const Scan& scan : run.scans) {
+    times.push_back(scan.time);
+    end = std::max(end, scan.time);
+    for (const Reading& r : scan.readings) end = std::max(end, r.time);
+  }
+  {
+    const QSignalBlocker block(timeline_);
+    timeline_->setScanTimes(std::move(times), end);
+  }
+  hoverLabel_->setText(tr("Hover over the grid to read a cell; drag to pan, wheel to zoom."));
+  chosenSonar_.reset();
+  beamView_->setMaxRange(run.ring.maxRange);
+  scanShownPose_.reset();  // a new log: its scan must be drawn
+  showSettings();
+  remap_->start(document_->dataset(), document_->cellSize(), document_->mapperSettings(),
+                timeline_->time());
+}
+
+bool MainWindow::openReference(const QString& path, bool quiet) {
+  try {
+    document_->setReferenceFromFile(readReference(QDir::toNativeSeparators(path).toStdString()),
+                                    path);
+  } catch (const std::exception& e) {
+    return reportError(tr("Cannot open reference map"), QString::fromStdString(e.what()), quiet);
+  }
+  return true;
+}
+
+}  // namespace sg::app

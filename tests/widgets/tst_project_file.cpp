@@ -1,0 +1,223 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The project file (docs/formats.md, "Project file") without a window: every field of a
+// ProjectState survives a save and a read, paths are stored relative to the project, and a corrupt
+// file is refused with an error naming the file and the line or field.
+
+#include <QDir>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include "project_file.h"
+#include "sonargrid/reference/reference_json.h"
+
+using namespace sg;
+using namespace sg::app;
+
+namespace {
+
+const QString kRoom = QStringLiteral(SONARGRID_DATASETS "/room/room.sglog");
+const QString kRoomReference = QStringLiteral(SONARGRID_DATASETS "/room/room.json");
+
+MapperSettings settingsOf(const std::string& model, const std::string& rule) {
+  MapperSettings s;
+  s.model = model;
+  s.rule = rule;
+  s.parameters = defaultParameters(model, rule);
+  return s;
+}
+
+// A state in which every field differs from its default, so a field that is not saved or not
+// read back shows as a difference.
+ProjectState everyFieldSet(const QString& dir) {
+  ProjectState s;
+  s.logPath = QFileInfo(kRoom).absoluteFilePath();
+  s.secondLogPath =
+      QFileInfo(QStringLiteral(SONARGRID_DATASETS "/arafat-room/run-2.sglog")).absoluteFilePath();
+  ReferenceMap ref;
+  ref.unit = LengthUnit::Centimetre;
+  ReferenceObject box;
+  box.name = "box";
+  box.closed = true;
+  box.corners = {{10.0, 20.0}, {110.0, 20.0}, {110.0, 70.5}, {10.0, 70.5}};
+  ReferenceObject wall;
+  wall.name = "wall";
+  wall.closed = false;
+  wall.corners = {{-50.0, 0.0}, {-50.0, 300.0}};
+  ref.objects = {box, wall};
+  s.reference = ref;
+  s.referencePath = dir + QStringLiteral("/drawn.json");  // edited since: held inline
+  s.referenceModified = true;
+  s.settings = settingsOf("parameterized", "bayes");
+  s.settings.parameters.set("p2", 0.15);
+  s.settings.parameters.set("p5", 17.0);
+  s.settings.pose = PoseSource::Truth;
+  s.cellSize = 0.07;
+  s.overlays = ui::Overlays(ui::Overlay::Reference) | ui::Overlay::Ring;
+  s.view = ui::ViewTransform{Position(1.25, -3.5), 87.5};
+  PinnedRow a{QStringLiteral("HPF, ε = 0.12"), settingsOf("hpf", "addition"), 0.1};
+  a.settings.parameters.set("epsilon", 0.12);
+  PinnedRow b{QStringLiteral("HIMM"), settingsOf("himm", "himm"), 0.05};
+  b.settings.pose = PoseSource::Truth;
+  s.pinnedRows = {a, b};
+  s.sweep.model = "parameterized";
+  s.sweep.rule = "bayes";
+  s.sweep.pose = PoseSource::Truth;
+  s.sweep.base = {{"no_echo", 1.0}};
+  s.sweep.useSecondRun = false;
+  return s;
+}
+
+QByteArray validText() {
+  return QByteArrayLiteral(
+      "{\n"
+      "  \"format\": \"sonargrid-project\",\n"
+      "  \"version\": 1,\n"
+      "  \"log\": \"room.sglog\",\n"
+      "  \"mapping\": {\"model\": \"hpf\", \"rule\": \"addition\", \"pose\": \"odom\",\n"
+      "              \"cell\": 0.05, \"parameters\": {\"epsilon\": 0.1}}\n"
+      "}\n");
+}
+
+}  // namespace
+
+class TestProjectFile : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void roundTripsEveryField() {
+    QTemporaryDir dir;
+    QVERIFY(dir.isValid());
+    const ProjectState saved = everyFieldSet(dir.path());
+    const QString file = dir.filePath(QStringLiteral("p.sgproj"));
+    writeProject(saved, file);
+    const ProjectState read = readProject(file);
+
+    QCOMPARE(read.logPath, saved.logPath);
+    QCOMPARE(read.secondLogPath, saved.secondLogPath);
+    QVERIFY(read.reference.has_value());
+    QCOMPARE(referenceJsonText(*read.reference), referenceJsonText(*saved.reference));
+    QCOMPARE(read.reference->unit, LengthUnit::Centimetre);
+    QCOMPARE(read.referencePath, saved.referencePath);
+    QCOMPARE(read.referenceModified, true);
+    QCOMPARE(read.settings.model, saved.settings.model);
+    QCOMPARE(read.settings.rule, saved.settings.rule);
+    QCOMPARE(read.settings.pose, saved.settings.pose);
+    QVERIFY(read.settings.parameters == saved.settings.parameters);
+    QCOMPARE(read.settings.parameters.get("p2"), 0.15);
+    QCOMPARE(read.cellSize, saved.cellSize);
+    QCOMPARE(read.overlays, saved.overlays);
+    QVERIFY(read.view.has_value());
+    QCOMPARE(*read.view, *saved.view);
+    QVERIFY(read.pinnedRows == saved.pinnedRows);
+    QCOMPARE(read.pinnedRows.at(0).label, QStringLiteral("HPF, ε = 0.12"));
+    QVERIFY(read.sweep == saved.sweep);
+
+    // Saved again, the text is the same: nothing drifts through a round trip.
+    QCOMPARE(projectJson(read, file), projectJson(saved, file));
+  }
+
+  void pathsAreRelativeToTheProject() {
+    QTemporaryDir dir;
+    ProjectState s;
+    s.logPath = dir.filePath(QStringLiteral("logs/a.sglog"));
+    const QString file = dir.filePath(QStringLiteral("p.sgproj"));
+    const QByteArray text = projectJson(s, file);
+    QVERIFY2(text.contains("\"log\": \"logs/a.sglog\""), text.constData());
+    // The whole folder moved: the log is found beside the project's new place.
+    const ProjectState moved = parseProject(text, QStringLiteral("/elsewhere/p.sgproj"));
+    QCOMPARE(moved.logPath, QStringLiteral("/elsewhere/logs/a.sglog"));
+    // An autosave names logs absolutely.
+    QVERIFY(projectJson(s, file, ProjectPaths::Absolute).contains(s.logPath.toUtf8()));
+  }
+
+  void referenceByPathIsReadFromItsFile() {
+    QTemporaryDir dir;
+    ProjectState s;
+    s.reference = readReferenceJson(kRoomReference.toStdString());
+    s.referencePath = kRoomReference;
+    s.referenceModified = false;
+    const QString file = dir.filePath(QStringLiteral("p.sgproj"));
+    const QByteArray text = projectJson(s, file);
+    QVERIFY(!text.contains("\"inline\""));  // saved in its file: the project names it only
+    const ProjectState read = parseProject(text, file);
+    QVERIFY(read.reference.has_value());
+    QCOMPARE(referenceJsonText(*read.reference), referenceJsonText(*s.reference));
+    QCOMPARE(read.referenceModified, false);
+  }
+
+  void corruptProjectIsRefusedWithItsPlace_data() {
+    QTest::addColumn<QByteArray>("text");
+    QTest::addColumn<QString>("message");  // what the error must contain
+    QByteArray text = validText();
+    // A brace missing after line 3's value: the parser stops on line 4.
+    QTest::newRow("syntax") << QByteArray(text).replace("\"version\": 1,", "\"version\": 1")
+                            << QStringLiteral("p.sgproj:4: not valid JSON");
+    QTest::newRow("empty") << QByteArray() << QStringLiteral("p.sgproj:1: not valid JSON");
+    QTest::newRow("format") << QByteArray(text).replace("sonargrid-project", "something")
+                            << QStringLiteral("p.sgproj: format: expected \"sonargrid-project\"");
+    QTest::newRow("newer version") << QByteArray(text).replace("\"version\": 1", "\"version\": 9")
+                                   << QStringLiteral("p.sgproj: version: version 9 is newer");
+    QTest::newRow("no mapping") << QByteArray(text).replace("\"mapping\"", "\"mappin\"")
+                                << QStringLiteral("p.sgproj: mapping: missing");
+    // HPF's ε spans [0.005, 1] m (hpf.cpp): 7 is outside.
+    QTest::newRow("parameter range")
+        << QByteArray(text).replace("\"epsilon\": 0.1", "\"epsilon\": 7")
+        << QStringLiteral("p.sgproj: mapping.parameters.epsilon:");
+    QTest::newRow("unknown parameter")
+        << QByteArray(text).replace("\"epsilon\": 0.1", "\"epsilonn\": 0.1")
+        << QStringLiteral("p.sgproj: mapping.parameters.epsilonn:");
+    QTest::newRow("cell") << QByteArray(text).replace("\"cell\": 0.05", "\"cell\": 2")
+                          << QStringLiteral("p.sgproj: mapping.cell: 2 m is outside");
+    QTest::newRow("pose") << QByteArray(text).replace("\"odom\"", "\"gps\"")
+                          << QStringLiteral("p.sgproj: mapping.pose: expected");
+    QTest::newRow("model") << QByteArray(text).replace("\"hpf\"", "\"nosuch\"")
+                           << QStringLiteral("p.sgproj: mapping:");
+    QTest::newRow("overlay") << QByteArray(text).replace(
+                                    "\"log\":", "\"overlays\": [\"path\", \"clouds\"], \"log\":")
+                             << QStringLiteral("p.sgproj: overlays[1]: unknown overlay \"clouds\"");
+    QTest::newRow("view") << QByteArray(text).replace(
+                                 "\"log\":",
+                                 "\"view\": {\"centre\": [1], \"pixels_per_metre\": 5}, \"log\":")
+                          << QStringLiteral("p.sgproj: view.centre: expected [x, y]");
+    QTest::newRow("pinned row") << QByteArray(text).replace(
+                                       "\"log\":", "\"pinned\": [{\"model\": \"hpf\"}], \"log\":")
+                                << QStringLiteral("p.sgproj: pinned[0].rule: missing");
+    QTest::newRow("inline reference")
+        << QByteArray(text).replace(
+               "\"log\":",
+               "\"reference\": {\"inline\": {\"format\": \"sonargrid-reference\", \"version\": 1, "
+               "\"units\": \"m\", \"objects\": [{\"name\": \"a\", \"closed\": true, \"corners\": "
+               "[[0, 0], [1, 0]]}]}}, \"log\":")
+        << QStringLiteral("p.sgproj: reference:");
+  }
+
+  void corruptProjectIsRefusedWithItsPlace() {
+    QFETCH(QByteArray, text);
+    QFETCH(QString, message);
+    try {
+      parseProject(text, QStringLiteral("p.sgproj"));
+      QFAIL("the corrupt project was accepted");
+    } catch (const ProjectError& e) {
+      QVERIFY2(QString::fromUtf8(e.what()).contains(message), e.what());
+    }
+  }
+
+  void unwritableFolderIsAnError() {
+    const QString file = QStringLiteral("/nonexistent-folder-sonargrid/p.sgproj");
+    try {
+      writeProject(ProjectState{}, file);
+      QFAIL("wrote into a folder that does not exist");
+    } catch (const ProjectError& e) {
+      QVERIFY2(QString::fromUtf8(e.what()).contains(file), e.what());
+    }
+    try {
+      readProject(file);
+      QFAIL("read a file that does not exist");
+    } catch (const ProjectError& e) {
+      QVERIFY2(QString::fromUtf8(e.what()).contains(file), e.what());
+    }
+  }
+};
+
+QTEST_MAIN(TestProjectFile)
+#include "tst_project_file.moc"
