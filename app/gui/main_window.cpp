@@ -45,6 +45,7 @@
 #include "parameter_panel.h"
 #include "preferences.h"
 #include "remap_controller.h"
+#include "robot_dock.h"
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/models/sensor_model.h"
@@ -155,6 +156,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   createActions();
   createDocks();
   createMenus();
+  installRobotMenu(this);
   restoreWindowState();
 
   connect(view_, &ui::GridView::hoverText, hoverLabel_, &QLabel::setText);
@@ -725,6 +727,18 @@ void MainWindow::adoptLog(const QString& path, std::shared_ptr<const Dataset> da
   scanShownPose_.reset();  // a new log: its scan must be drawn
   showSettings();
   remap_->start(data_, cellSize_, settings_, timeline_->time());
+}
+
+void MainWindow::closeLog() {
+  cancelLoad();
+  data_.reset();
+  logPath_.clear();
+  readingChooser_->clear();
+  beamSonar_.reset();
+  view_->setHighlightedSonar(std::nullopt);
+  view_->setRobotAt(nullptr, settings_.pose, 0);
+  updateSummary();
+  updateTitle();
 }
 
 bool MainWindow::openReference(const QString& path, bool quiet) {

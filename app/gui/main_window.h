@@ -66,6 +66,9 @@ class MainWindow : public QMainWindow {
   const std::shared_ptr<const sg::Dataset>& dataset() const { return data_; }
   const QString& logPath() const { return logPath_; }
   bool openReference(const QString& path, bool quiet = false);
+  bool hasReference() const { return reference_.has_value(); }
+  // Forgets the open log (a live robot's map takes its place); the reference map stays.
+  void closeLog();
 
   // Model, rule, parameters and pose: re-maps the log (not when they equal the settings of the
   // current map), and shows them in the menus, the title, the parameter panel and the beam view.
