@@ -15,11 +15,14 @@
 #include <QMenu>
 #include <QMenuBar>
 #include <QPushButton>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSerialPortInfo>
 #include <QSettings>
 #include <QSpinBox>
 #include <QStackedWidget>
 #include <QStatusBar>
+#include <QTimer>
 #include <QToolButton>
 #include <QVBoxLayout>
 
@@ -79,19 +82,12 @@ RobotDock::~RobotDock() {
 void RobotDock::buildActions() {
   connectAction_ = new QAction(tr("&Connect"), this);
   connectAction_->setToolTip(tr("Connect to the robot the Robot dock names"));
-  connect(connectAction_, &QAction::triggered, this, [this] {
-    show();
-    raise();
-    connectFromFields();
-  });
+  connect(connectAction_, &QAction::triggered, this, &RobotDock::connectFromFields);
   disconnectAction_ = new QAction(tr("&Disconnect"), this);
   connect(disconnectAction_, &QAction::triggered, session_, &RobotSession::disconnectLink);
   virtualAction_ = new QAction(tr("Start &Virtual Robot"), this);
-  connect(virtualAction_, &QAction::triggered, this, [this] {
-    show();
-    raise();
-    startVirtualRobot();
-  });
+  connect(virtualAction_, &QAction::triggered, this,
+          [this] { startVirtualRobot(virtualRobotOptions()); });
   stopVirtualAction_ = new QAction(tr("S&top Virtual Robot"), this);
   connect(stopVirtualAction_, &QAction::triggered, this, [this] {
     session_->stopVirtualRobot();
@@ -150,7 +146,9 @@ void RobotDock::buildWidgets() {
   auto* connectBox = new QGroupBox(tr("Connect"), host);
   auto* connectForm = new QFormLayout(connectBox);
   kind_ = new QComboBox(connectBox);
-  kind_->addItems({tr("TCP (simulator, network bridge)"), tr("Serial port (robot)")});
+  kind_->addItems({tr("TCP"), tr("Serial port")});
+  kind_->setToolTip(
+      tr("TCP: a simulator, the virtual robot or a network bridge; serial: the robot's own port"));
   kindPages_ = new QStackedWidget(connectBox);
   auto* tcp = new QWidget(kindPages_);
   auto* tcpRow = new QHBoxLayout(tcp);
@@ -211,10 +209,10 @@ void RobotDock::buildWidgets() {
   virtualRobot_->addItem(tr("Pioneer 3-DX"), QStringLiteral("p3dx"));
   virtualRobot_->addItem(tr("AmigoBot"), QStringLiteral("amigobot"));
   route_ = new QComboBox(virtualBox);
-  route_->addItem(tr("drives loops (in motion)"), QStringLiteral("in-motion"));
+  route_->addItem(tr("loops (in motion)"), QStringLiteral("in-motion"));
   route_->addItem(tr("stops and scans"), QStringLiteral("stop-and-scan"));
-  route_->addItem(tr("sweeps lanes (U-turns)"), QStringLiteral("u-turn"));
-  route_->addItem(tr("waits for you (teleoperate)"), QString());
+  route_->addItem(tr("lanes (U-turns)"), QStringLiteral("u-turn"));
+  route_->addItem(tr("none: teleoperate"), QString());
   auto* virtualButtons = new QHBoxLayout;
   auto* startButton = new QPushButton(tr("Start"), virtualBox);
   startButton->setObjectName(QStringLiteral("robotStartVirtual"));
@@ -243,7 +241,7 @@ void RobotDock::buildWidgets() {
   auto* recordRow = new QHBoxLayout;
   auto* recordButton = new QPushButton(tr("Record…"), driveBox);
   connect(recordButton, &QPushButton::clicked, recordAction_, &QAction::trigger);
-  auto* stopRecordButton = new QPushButton(tr("Stop Recording"), driveBox);
+  auto* stopRecordButton = new QPushButton(tr("Stop"), driveBox);
   connect(stopRecordButton, &QPushButton::clicked, stopRecordAction_, &QAction::trigger);
   connect(recordAction_, &QAction::changed, recordButton,
           [this, recordButton] { recordButton->setEnabled(recordAction_->isEnabled()); });
@@ -273,6 +271,7 @@ void RobotDock::buildWidgets() {
   stats_ = new QLabel(statusBox);
   stats_->setObjectName(QStringLiteral("robotStats"));
   stats_->setTextFormat(Qt::RichText);
+  stats_->setWordWrap(true);  // the table narrows with the dock
   stats_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   lastMessage_ = new QLabel(statusBox);
   lastMessage_->setWordWrap(true);
@@ -282,8 +281,30 @@ void RobotDock::buildWidgets() {
   statusLayout->addWidget(lastMessage_);
   layout->addWidget(statusBox);
   layout->addStretch(1);
-  setWidget(host);
+  // A short window scrolls the dock rather than squeezing its status.
+  auto* scroll = new QScrollArea(this);
+  scroll->setWidgetResizable(true);
+  scroll->setFrameShape(QFrame::NoFrame);
+  scroll->setWidget(host);
+  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  // As wide as its fields need; only its height scrolls.
+  for (QComboBox* box : host->findChildren<QComboBox*>()) {
+    box->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    box->setMinimumContentsLength(10);
+  }
+  scroll_ = scroll;
+  setWidget(scroll);
   refreshSerialPorts();
+}
+
+void RobotDock::showEvent(QShowEvent* event) {
+  QDockWidget::showEvent(event);
+  // As wide as its fields need once they are polished and filled; only its height scrolls.
+  QTimer::singleShot(0, this, [this] {
+    scroll_->setMinimumWidth(scroll_->widget()->minimumSizeHint().width() +
+                             scroll_->verticalScrollBar()->sizeHint().width() +
+                             2 * scroll_->frameWidth());
+  });
 }
 
 QStringList RobotDock::worlds() const {
@@ -319,6 +340,8 @@ void RobotDock::refreshSerialPorts() {
 }
 
 void RobotDock::prepareWindow() {
+  show();
+  raise();
   // The live map replaces the open log (the reference map, if any, stays), and is mapped with
   // what the window shows now.
   window_->closeLog();
@@ -358,16 +381,20 @@ void RobotDock::connectFromFields() {
   session_->connectTo(address, robot);
 }
 
-bool RobotDock::startVirtualRobot() {
+VirtualRobotHost::Options RobotDock::virtualRobotOptions() const {
   VirtualRobotHost::Options o;
   o.world = world_->currentData().toString();
+  o.robot = virtualRobot_->currentData().toString().toStdString();
+  const QString route = route_->currentData().toString();
+  o.route = route.isEmpty() ? std::nullopt : routeKindFromName(route.toStdString());
+  return o;
+}
+
+bool RobotDock::startVirtualRobot(const VirtualRobotHost::Options& o) {
   if (o.world.isEmpty()) {
     say(tr("No world file: the bundled datasets were not found"));
     return false;
   }
-  o.robot = virtualRobot_->currentData().toString().toStdString();
-  const QString route = route_->currentData().toString();
-  o.route = route.isEmpty() ? std::nullopt : routeKindFromName(route.toStdString());
   prepareWindow();
   QString error;
   if (!session_->startVirtualRobot(o, &error)) {
@@ -424,11 +451,12 @@ void RobotDock::showStatus() {
     html =
         tr("<table>"
            "<tr><td>packets/s</td><td align=right>%1</td></tr>"
-           "<tr><td>packets</td><td align=right>%2 (%3 SIPs, %4 SIMSTATs)</td></tr>"
+           "<tr><td>packets</td><td align=right>%2</td></tr>"
+           "<tr><td>SIPs / SIMSTATs</td><td align=right>%3 / %4</td></tr>"
            "<tr><td>readings</td><td align=right>%5</td></tr>"
            "<tr><td>bad checksums</td><td align=right>%6</td></tr>"
            "<tr><td>bad lengths</td><td align=right>%7</td></tr>"
-           "<tr><td>short SIPs / SIMSTATs / replies</td><td align=right>%8 / %9 / %10</td></tr>"
+           "<tr><td>short SIP / SIMSTAT / reply</td><td align=right>%8 / %9 / %10</td></tr>"
            "<tr><td>bytes skipped</td><td align=right>%11</td></tr>"
            "<tr><td>connections</td><td align=right>%12</td></tr>"
            "<tr><td>reconnects</td><td align=right>%13</td></tr>"
@@ -453,6 +481,7 @@ void RobotDock::showStatus() {
   if (!session_->mapping() && source && source->size() > 0)
     html += tr("<p>The window shows another log: New Map maps the robot again.</p>");
   stats_->setText(html);
+  recording_->setVisible(session_->recording());
   recording_->setText(session_->recording()
                           ? tr("Recording to %1: %2 scans")
                                 .arg(QDir::toNativeSeparators(session_->recordingPath()))
@@ -474,6 +503,9 @@ RobotDock* installRobotMenu(MainWindow* window) {
   window->addDockWidget(Qt::RightDockWidgetArea, dock);
   if (auto* summary = window->findChild<QDockWidget*>(QStringLiteral("mapDock")))
     window->tabifyDockWidget(summary, dock);
+  // The beam view stays in front until a robot is connected (the dock raises itself then).
+  if (auto* beams = window->findChild<QDockWidget*>(QStringLiteral("beamModelDock")))
+    beams->raise();
   return dock;
 }
 

@@ -7,6 +7,8 @@
 
 #include <QDockWidget>
 
+#include "virtual_robot_host.h"
+
 class QAction;
 class QCheckBox;
 class QComboBox;
@@ -14,6 +16,7 @@ class QLabel;
 class QLineEdit;
 class QMenu;
 class QPushButton;
+class QScrollArea;
 class QSpinBox;
 class QStackedWidget;
 
@@ -42,13 +45,19 @@ class RobotDock : public QDockWidget {
 
   // Connects to what the dock's fields say (TCP host and port, or serial port and baud).
   void connectFromFields();
-  // Starts the virtual robot chosen in the dock (world, robot, route) and connects to it.
-  bool startVirtualRobot();
+  // The virtual robot the dock's fields choose (world, robot, route), in real time.
+  VirtualRobotHost::Options virtualRobotOptions() const;
+  // Starts it and connects to it; its world becomes the window's reference map unless the window
+  // has one. False after saying why.
+  bool startVirtualRobot(const VirtualRobotHost::Options& options);
   // Starts recording to `path` (no dialog); false after saying why.
   bool recordTo(const QString& path);
   // The world files offered for the virtual robot (the bundled datasets' world.json).
   QStringList worlds() const;
   void setWorld(const QString& path);
+
+ protected:
+  void showEvent(QShowEvent* event) override;
 
  private:
   void buildActions();
@@ -90,6 +99,7 @@ class RobotDock : public QDockWidget {
   QLabel* stats_ = nullptr;
   QLabel* recording_ = nullptr;
   QLabel* lastMessage_ = nullptr;
+  QScrollArea* scroll_ = nullptr;
 };
 
 // Creates the Robot menu (before Settings and Help) and the Robot dock of `window`.
