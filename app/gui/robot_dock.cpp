@@ -51,6 +51,7 @@ RobotDock::RobotDock(MainWindow* window)
                                 this)),
       teleop_(new TeleopKeys(window, session_, this)) {
   setObjectName(QStringLiteral("robotDock"));
+  session_->setSettingsProvider([window] { return window->mapperSettings(); });
   buildActions();
   buildWidgets();
   connect(session_, &RobotSession::stateChanged, this, [this] {
@@ -76,7 +77,13 @@ RobotDock::RobotDock(MainWindow* window)
 }
 
 RobotDock::~RobotDock() {
-  teleop_->setEnabled(false);
+  // Before the window's children go (the remap controller among the first): the keys stop the
+  // robot, then the session closes its link and its log without calling back into this dock.
+  delete teleop_;
+  teleop_ = nullptr;
+  session_->disconnect(this);
+  delete session_;
+  session_ = nullptr;
 }
 
 void RobotDock::buildActions() {
@@ -116,7 +123,10 @@ void RobotDock::buildActions() {
   connect(stopRecordAction_, &QAction::triggered, session_, &RobotSession::stopRecording);
   newMapAction_ = new QAction(tr("&New Map"), this);
   newMapAction_->setToolTip(tr("Forget the scans received; the next ones start a new map"));
-  connect(newMapAction_, &QAction::triggered, session_, &RobotSession::newMap);
+  connect(newMapAction_, &QAction::triggered, this, [this] {
+    prepareWindow();
+    session_->newMap();
+  });
 
   menu_ = new QMenu(tr("&Robot"), window_);
   menu_->addAction(connectAction_);

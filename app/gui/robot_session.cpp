@@ -79,6 +79,8 @@ void RobotSession::setState(State state, const QString& text) {
 void RobotSession::connectTo(const live::LinkAddress& address,
                              std::optional<arcos::RobotParameters> robot) {
   if (!clock_.isValid()) clock_.start();
+  // A log opened since took the map: the next merge hands the whole source back to the window.
+  if (source_ && started_ && !attached()) started_ = false;
   const bool reuse = link_ && link_->address() == address &&
                      linkRobot_.has_value() == robot.has_value() &&
                      (!robot || linkRobot_->preset == robot->preset);
@@ -197,8 +199,17 @@ void RobotSession::mergeNow() {
   }
   pending_.clear();
   if (!started_) {
+    // The whole source: the first scans, or every scan so far when the map comes back to the
+    // window (a log had taken it over).
     started_ = true;
-    MapperSettings settings = settings_;
+    times.clear();
+    end = 0.0;
+    for (const Scan& scan : shown_.scans) {
+      times.push_back(scan.time);
+      end = std::max(end, scan.time);
+      for (const Reading& r : scan.readings) end = std::max(end, r.time);
+    }
+    MapperSettings settings = settingsProvider_ ? settingsProvider_() : settings_;
     if (settings.pose == PoseSource::Truth && !shown_.scans.front().truth) {
       settings.pose = PoseSource::Odometry;
       emit mappedWithOdometry();

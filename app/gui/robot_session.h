@@ -16,6 +16,7 @@
 #include <QPointer>
 #include <QString>
 #include <QTimer>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -56,6 +57,11 @@ class RobotSession : public QObject {
 
   // What a new live map is mapped with (the window's settings and cell size when it starts).
   void setMapping(const MapperSettings& settings, double cellSize);
+  // Asked for the settings when a live map starts, instead of those setMapping() gave: the
+  // window's, which the user may change between connecting and the first scans.
+  void setSettingsProvider(std::function<MapperSettings()> provider) {
+    settingsProvider_ = std::move(provider);
+  }
   // How often received scans are merged into the map (coalesced; tens of ms).
   void setMergeInterval(int ms) { mergeTimer_.setInterval(ms); }
 
@@ -133,6 +139,7 @@ class RobotSession : public QObject {
   QPointer<ui::Timeline> timeline_;
   QPointer<ui::GridView> view_;
   MapperSettings settings_;
+  std::function<MapperSettings()> settingsProvider_;
   double cellSize_ = 0.05;
 
   VirtualRobotHost host_;

@@ -9,6 +9,7 @@
 //
 // Set SONARGRID_ROBOT_SCREENSHOT=FILE.png to save the window during the live session.
 
+#include <QMenu>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTemporaryDir>
@@ -225,6 +226,45 @@ class TestRobotSession : public QObject {
       QCOMPARE(a.readings.size(), b.readings.size());
       QVERIFY(std::abs(a.time - b.time) < 1e-6);  // .sglog keeps microseconds
     }
+  }
+
+  void aLogOpenedWhileLiveTakesTheMapUntilNewMap() {
+    app::MainWindow window(ui::GridView::Backend::Raster);
+    window.setMapperSettings(settingsFor("himm", "himm"));
+    app::RobotDock* dock = window.findChild<app::RobotDock*>();
+    app::RobotSession* session = dock->session();
+    QString error;
+    QVERIFY2(session->startVirtualRobot(virtualRobot(), &error), qPrintable(error));
+    QTRY_VERIFY_WITH_TIMEOUT(session->scansReceived() >= 10, kWaitMs);
+    const auto live = session->source();
+    QCOMPARE(window.remapController()->source(), live);
+
+    // The log takes the window: its map and timeline stay while the robot's scans go on arriving.
+    QVERIFY(window.openLog(QStringLiteral(SONARGRID_DATASETS "/room/room.sglog"), true));
+    QVERIFY(window.dataset());
+    const double logEnd = window.timeline()->endTime();
+    const std::size_t at = session->scansReceived();
+    QTRY_VERIFY_WITH_TIMEOUT(session->scansReceived() >= at + 10, kWaitMs);
+    session->mergeNow();
+    QVERIFY(!session->mapping());
+    QCOMPARE(window.remapController()->dataset(), window.dataset());
+    QCOMPARE(window.timeline()->endTime(), logEnd);
+    QCOMPARE(window.timeline()->currentScan(), window.dataset()->scans.size() - 1);
+
+    // New Map gives the window back to the robot: the log closes, a new source maps the scans
+    // that come, and the timeline is theirs.
+    for (QAction* a : dock->menu()->actions())
+      if (a->text() == QStringLiteral("&New Map")) a->trigger();
+    QVERIFY(!window.dataset());
+    QTRY_VERIFY_WITH_TIMEOUT(session->source() && session->source()->size() >= 5, kWaitMs);
+    QVERIFY(session->source() != live);
+    QVERIFY(session->mapping());
+    QCOMPARE(window.remapController()->source(), session->source());
+    session->disconnectLink();
+    settledMap(window);
+    QCOMPARE(window.timeline()->currentScan(), session->source()->size() - 1);
+    QVERIFY(window.timeline()->endTime() < logEnd);
+    session->stopVirtualRobot();
   }
 
   void arrowKeysDriveTheRobotAndNotTheView() {
