@@ -149,6 +149,9 @@ class TestRobotSession : public QObject {
     QVERIFY(map->filledCount() > 0);
     QCOMPARE(map->filledCount(), expected.filledCount());
     QVERIFY(sameLayers(*map, expected));
+    qInfo("live map: %zu scans, %zu readings, %d merges, %zu filled cells (%d x %d)",
+          source->size(), readingCount(received), static_cast<int>(merged.count()),
+          map->filledCount(), map->spec.width, map->spec.height);
     session->stopVirtualRobot();
   }
 
@@ -193,6 +196,8 @@ class TestRobotSession : public QObject {
     batch.mapDataset(all);
     QVERIFY(sameLayers(*map, batch.snapshot()));
     QVERIFY(map->filledCount() >= first->filledCount());
+    qInfo("reconnect: %zu scans before, %zu after, %zu filled cells before, %zu after",
+          before.scans.size(), all.scans.size(), first->filledCount(), map->filledCount());
     session->stopVirtualRobot();
   }
 
