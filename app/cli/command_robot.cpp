@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "signal_watcher.h"
 #include "sonargrid/arcos/virtual_robot.h"
+#include "sonargrid/arcos/virtual_route.h"
 #include "sonargrid/base/log_error.h"
 #include "sonargrid/io/sglog_recorder.h"
 #include "sonargrid/live/arcos_server.h"
@@ -25,23 +26,6 @@
 
 namespace sg::cli {
 namespace {
-
-// One lap of a repeating route: the route out, back, and a turn on the spot into the starting
-// heading, so that the lap ends where and as it began and can be driven over and over.
-Trajectory outAndBackLap(const std::optional<Pose2D>& start, const std::vector<Position>& waypoints,
-                         SimulationSettings settings) {
-  settings.duration.reset();
-  const Trajectory out = planTrajectory(start, waypoints, settings);
-  // A duration just past the route out makes planTrajectory add exactly the leg back.
-  settings.duration = out.duration() + 1e-6;
-  const Trajectory lap = planTrajectory(start, waypoints, settings);
-  std::vector<PathPiece> pieces = lap.pieces();
-  const double turn = wrapAngle(lap.start().heading - lap.end().heading);
-  if (turn != 0.0) pieces.push_back(PathPiece{0.0, 0.0, turn});
-  return Trajectory(lap.start(), std::move(pieces), settings.limits);
-}
-// Stop-and-scan: how long the robot stands at each stop (about three turns of a Pioneer's ring).
-constexpr double kStopHold = 1.0;
 
 std::string fixed(double v, int decimals) {
   std::ostringstream s;
@@ -72,27 +56,19 @@ int runRobot(Arguments& args) {
   const double duration = args.number("--duration", 0.0, 0.001, 1e7);
   const double timeScale = args.number("--time-scale", 1.0, 0.01, 100.0);
   const std::optional<std::string> logOut = args.value("--log-out");
-  arcos::VirtualRobotSettings settings;
-  SonarPhysics& p = settings.physics;
-  if (const auto seed = args.value("--seed")) p.seed = parseSeed(*seed);
-  if (onOff(args, "--drift", false)) settings.drift = defaultDrift();
-  // The sonar as `simulate` models it (docs/simulator.md), in ARCOS's range window.
-  p.rangeNoiseSd = 0.01;
-  p.misreadRate = 0.01;
-  p.maxIncidenceDeg = 20.0;
-  p.specularEcho = SpecularEcho::Multipath;
-  p.raysPerCone = 9;
+  std::optional<std::uint64_t> seed;
+  if (const auto text = args.value("--seed")) seed = parseSeed(*text);
+  const bool drift = onOff(args, "--drift", false);
   args.finish();
 
   const std::optional<arcos::RobotParameters> robot = arcos::robotPreset(robotName);
   if (!robot) {
     throw UsageError("--robot expects " + arcos::robotPresetNames() + ", got '" + robotName + "'");
   }
-  settings.robot = *robot;
-  // The watchdog guards the link, which runs in real time: a client that sends PULSE every half
-  // second must keep a robot going however fast its clock runs.
-  settings.watchdog *= timeScale;
-  settings.server = {"SonarGridSim", "Pioneer", robotName == "amigobot" ? "amigo" : "p3dx"};
+  arcos::VirtualRobotSettings settings = arcos::virtualRobotSettings(*robot, timeScale);
+  SonarPhysics& p = settings.physics;
+  if (seed) p.seed = *seed;
+  if (drift) settings.drift = defaultDrift();
   if (teleop && (routeName || routeFile || stops != 0))
     throw UsageError(
         "--teleop drives by the client's commands: give no --route, --route-file or --stops");
@@ -121,34 +97,16 @@ int runRobot(Arguments& args) {
     throw InputError(e.what());
   }
   const SonarWorld world = sonarWorld(map);
-  std::optional<arcos::RoutePlan> plan;
-  Pose2D start;
+  arcos::VirtualRoute route;
   try {
-    if (!routeFile) waypoints = routeWaypoints(sim.route, world, sim);
-    const bool repeat = sim.route != RouteKind::StopAndScan;
-    const Trajectory path = repeat ? outAndBackLap(startPose(map), waypoints, sim)
-                                   : planTrajectory(startPose(map), waypoints, sim);
-    start = path.start();
-    if (!teleop) {
-      const RobotBody body = robotBody(settings.robot.ring);
-      if (const auto near = closestApproach(world, path); near && near->distance < body.radius) {
-        throw InputError("the route passes " + fixed(near->distance, 3) + " m from a surface at (" +
-                         fixed(near->where.x(), 3) + ", " + fixed(near->where.y(), 3) +
-                         "), inside the " + robotName + "'s radius of " + fixed(body.radius, 3) +
-                         " m: give a route that keeps clear (--route-file)");
-      }
-      plan = arcos::RoutePlan{path, {}, 0.0, repeat};
-      if (sim.route == RouteKind::StopAndScan) {
-        for (const double s : stopDistances(path.length(), sim.stops))
-          plan->stops.push_back(path.timeAtDistance(s));
-        plan->hold = kStopHold;
-      }
-    }
+    route = arcos::planVirtualRoute(map, settings.robot.ring, sim, waypoints, teleop);
+  } catch (const arcos::RouteClearanceError& e) {
+    throw InputError(e.what());
   } catch (const std::invalid_argument& e) {
     throw InputError(worldPath + ": " + e.what());
   }
 
-  arcos::VirtualRobot virtualRobot(world, start, plan, settings);
+  arcos::VirtualRobot virtualRobot(world, route.start, route.plan, settings);
   std::unique_ptr<SglogRecorder> log;
   if (logOut) {
     Dataset header;

@@ -26,6 +26,7 @@
 #include "log_loader.h"
 #include "parameter_panel.h"
 #include "remap_controller.h"
+#include "robot_dock.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/models/sensor_model.h"
 #include "sonargrid/reference/read_reference.h"
@@ -103,6 +104,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   createActions();
   createDocks();
   createMenus();
+  installRobotMenu(this);
   restoreWindowState();
   connectDocument();
   mappedSettings_ = document_->mapperSettings();

@@ -74,6 +74,9 @@ class MainWindow : public QMainWindow {
   const QString& logPath() const;
   // Reads a reference map and makes it the document's (one undo step).
   bool openReference(const QString& path, bool quiet = false);
+  bool hasReference() const;
+  // Forgets the open log (a live robot's map takes its place); the reference map stays.
+  void closeLog();
 
   // Model, rule, parameters and pose, as one undoable edit of the document: re-maps the log (not
   // when they equal the settings of the current map), and shows them in the menus, the title, the

@@ -3,6 +3,7 @@
 // bar, and adopting a loaded log (or a project waiting for its log) as the document's.
 #include <QAction>
 #include <QCoreApplication>
+#include <QComboBox>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -184,5 +185,18 @@ bool MainWindow::openReference(const QString& path, bool quiet) {
   }
   return true;
 }
+
+void MainWindow::closeLog() {
+  cancelLoad();
+  document_->setLog({}, nullptr);
+  readingChooser_->clear();
+  beamSonar_.reset();
+  view_->setHighlightedSonar(std::nullopt);
+  view_->setRobotAt(nullptr, document_->mapperSettings().pose, 0);
+  updateSummary();
+  updateTitle();
+}
+
+bool MainWindow::hasReference() const { return document_->reference().has_value(); }
 
 }  // namespace sg::app
