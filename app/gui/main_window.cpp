@@ -44,6 +44,8 @@
 #include "export_file.h"
 #include "parameter_panel.h"
 #include "preferences.h"
+#include "reference_editing.h"
+#include "reference_editor.h"
 #include "remap_controller.h"
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/io/log_reader.h"
@@ -156,6 +158,15 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   createDocks();
   createMenus();
   restoreWindowState();
+  // The reference editor (its undo stack moves to the Document): its edits are the reference.
+  ui::ReferenceEditor* editor = installReferenceEditor(this, view_);
+  connect(editor, &ui::ReferenceEditor::referenceEdited, this, [this, editor] {
+    reference_ = editor->reference();
+    referencePath_ = editor->path();
+    view_->setReferenceLines(reference_ ? ui::referencePolylines(*reference_)
+                                        : std::vector<std::vector<Position>>{});
+    updateSummary();
+  });
 
   connect(view_, &ui::GridView::hoverText, hoverLabel_, &QLabel::setText);
   connect(view_, &ui::GridView::repainted, this, [this] {
@@ -736,6 +747,7 @@ bool MainWindow::openReference(const QString& path, bool quiet) {
   referencePath_ = path;
   view_->setReferenceLines(ui::referencePolylines(*reference_));
   updateSummary();
+  if (auto* editor = findChild<ui::ReferenceEditor*>()) editor->setReference(reference_, path);
   return true;
 }
 
