@@ -124,8 +124,10 @@ void ReferenceEditor::setEditing(bool on) {
   if (on) {
     view_->setTool(tool_);
     view_->setCursor(Qt::CrossCursor);
-    dock_->show();
-    dock_->raise();
+    if (dock_->parentWidget()) {  // in a window (alone, a dock would float as its own window)
+      dock_->show();
+      dock_->raise();
+    }
     emit message(
         tr("Editing the reference map: click corners; Enter ends an object open, C closed; "
            "drag corners; Ctrl+click an edge inserts one; Del deletes; S snaps; E leaves"));
