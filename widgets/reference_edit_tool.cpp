@@ -73,11 +73,14 @@ void ReferenceEditTool::finishDrawing(bool closed) {
   } else {
     pending_.clear();
   }
+  emit message({});
   emit repaintNeeded();
 }
 
 void ReferenceEditTool::cancelDrawing() {
+  if (pending_.empty()) return;
   pending_.clear();
+  emit message({});
   emit repaintNeeded();
 }
 

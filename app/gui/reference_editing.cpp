@@ -45,7 +45,12 @@ ui::ReferenceEditor* installReferenceEditor(QMainWindow* window, ui::GridView* v
     window->tabifyDockWidget(parameters, editor->dock());
   editor->dock()->hide();  // shown by edit mode
   QObject::connect(editor, &ui::ReferenceEditor::message, window->statusBar(),
-                   [window](const QString& text) { window->statusBar()->showMessage(text, 8000); });
+                   [window](const QString& text) {
+                     if (text.isEmpty())
+                       window->statusBar()->clearMessage();
+                     else
+                       window->statusBar()->showMessage(text, 8000);
+                   });
   return editor;
 }
 
