@@ -62,6 +62,7 @@ ReferenceEditor::ReferenceEditor(QUndoStack* stack, GridView* view, QWidget* par
 
 ReferenceEditor::~ReferenceEditor() {
   if (view_ && view_->tool() == tool_) view_->setTool(nullptr);
+  if (!parent_) delete dock_;  // without a window, nobody else owns it
 }
 
 void ReferenceEditor::setUndoStack(QUndoStack* stack) {
@@ -115,11 +116,11 @@ bool ReferenceEditor::save(const QString& path, QString* error) {
 }
 
 bool ReferenceEditor::editing() const {
-  return view_->tool() == tool_;
+  return view_ && view_->tool() == tool_;
 }
 
 void ReferenceEditor::setEditing(bool on) {
-  if (on == editing()) return;
+  if (on == editing() || !view_) return;
   editMode_->setChecked(on);
   if (on) {
     view_->setTool(tool_);

@@ -7,6 +7,7 @@
 // through the atomic file helper.
 
 #include <QObject>
+#include <QPointer>
 #include <QString>
 #include <optional>
 
@@ -74,7 +75,7 @@ class ReferenceEditor : public QObject {
   bool saveDialog(bool askPath);
   void report(const QString& title, const QString& text);
 
-  GridView* view_;
+  QPointer<GridView> view_;  // a window may delete its view before this editor
   QWidget* parent_;
   ReferenceEditModel* model_;
   ReferenceEditTool* tool_;

@@ -22,9 +22,9 @@ ui::ReferenceEditor* installReferenceEditor(QMainWindow* window, ui::GridView* v
   auto* edit = new QMenu(QMainWindow::tr("&Edit"), window);
   edit->setObjectName(QStringLiteral("editMenu"));
   QAction* undo = stack->createUndoAction(edit, QMainWindow::tr("&Undo"));
-  undo->setShortcut(QKeySequence::Undo);
+  undo->setShortcuts(QKeySequence::Undo);
   QAction* redo = stack->createRedoAction(edit, QMainWindow::tr("&Redo"));
-  redo->setShortcut(QKeySequence::Redo);
+  redo->setShortcuts(QKeySequence::Redo);
   edit->addAction(undo);
   edit->addAction(redo);
   edit->addSeparator();
