@@ -226,6 +226,10 @@ void ReferenceEditModel::putObject(int index, const std::optional<ReferenceObjec
                                    const std::optional<ReferenceObject>& to) {
   if (!reference_) return;
   auto& objects = reference_->objects;
+  // Only a stack shared with commands that replace the map behind this model's back could get
+  // here out of range; ignoring the step is better than a crash.
+  const auto size = static_cast<int>(objects.size());
+  if (index < 0 || index > size || (from && index == size)) return;
   const auto at = objects.begin() + index;
   if (!from && to) {
     objects.insert(at, *to);

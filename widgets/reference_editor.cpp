@@ -55,7 +55,9 @@ ReferenceEditor::ReferenceEditor(QUndoStack* stack, GridView* view, QWidget* par
   connect(panel_->saveButton(), &QPushButton::clicked, save_, &QAction::trigger);
   connect(panel_->saveAsButton(), &QPushButton::clicked, saveAs_, &QAction::trigger);
 
-  connect(model_, &ReferenceEditModel::changed, this, &ReferenceEditor::referenceEdited);
+  connect(model_, &ReferenceEditModel::changed, this, [this] {
+    if (!adopting_) emit referenceEdited();
+  });
   connect(tool_, &ReferenceEditTool::repaintNeeded, view_, &GridView::toolChanged);
   connect(tool_, &ReferenceEditTool::message, this, &ReferenceEditor::message);
 }
@@ -73,6 +75,14 @@ void ReferenceEditor::setReference(std::optional<ReferenceMap> reference, const 
   tool_->cancelDrawing();
   model_->select(-1);
   model_->replaceReference(std::move(reference), path, tr("Open Reference"));
+  if (model_->hasReference()) panel_->setEntryUnit(model_->map().unit);
+}
+
+void ReferenceEditor::adoptReference(std::optional<ReferenceMap> reference, const QString& path) {
+  tool_->cancelDrawing();
+  adopting_ = true;
+  model_->putReference(reference, path);
+  adopting_ = false;
   if (model_->hasReference()) panel_->setEntryUnit(model_->map().unit);
 }
 

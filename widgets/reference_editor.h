@@ -38,6 +38,10 @@ class ReferenceEditor : public QObject {
   // Makes `reference` (read from `path`; empty when it has no file) the one edited: one undo step
   // ("Open Reference"), so the stack never holds edits of a map that is gone.
   void setReference(std::optional<sg::ReferenceMap> reference, const QString& path);
+  // Takes `reference` without an undo step and without referenceEdited: for an owner (the
+  // Document) whose own command or restore changed the reference. The editor's commands already
+  // on the stack stay valid, since undo reaches them only after undoing that change.
+  void adoptReference(std::optional<sg::ReferenceMap> reference, const QString& path);
   const std::optional<sg::ReferenceMap>& reference() const;
   QString path() const;
 
@@ -82,6 +86,7 @@ class ReferenceEditor : public QObject {
   ReferenceEditorPanel* panel_;
   QDockWidget* dock_;
   QAction *editMode_, *new_, *open_, *save_, *saveAs_;
+  bool adopting_ = false;
 };
 
 }  // namespace sg::ui

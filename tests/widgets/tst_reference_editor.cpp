@@ -361,6 +361,19 @@ class TestReferenceEditor : public QObject {
     QCOMPARE(f.object(0).name, std::string("box"));
   }
 
+  void adoptingIsNoStepAndNoSignal() {
+    Fixture f;
+    QSignalSpy edited(&f.editor, &ReferenceEditor::referenceEdited);
+    f.editor.adoptReference(square(LengthUnit::Millimetre), "room.json");
+    QCOMPARE(f.stack.count(), 0);
+    QCOMPARE(edited.count(), 0);
+    QVERIFY(sameReference(*f.editor.reference(), square(LengthUnit::Millimetre)));
+    QCOMPARE(f.editor.panel()->entryUnit(), LengthUnit::Millimetre);
+    f.editor.model()->moveCorner(0, 0, {0, 0});  // edits after it are steps, and signalled
+    QCOMPARE(f.stack.count(), 1);
+    QCOMPARE(edited.count(), 1);
+  }
+
   void saveAndLoadRoundTrip() {
     QTemporaryDir dir;
     QVERIFY(dir.isValid());
