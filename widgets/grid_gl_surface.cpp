@@ -158,6 +158,7 @@ void GridGlSurface::paintGL() {
     QPainter painter(this);
     painter.drawImage(0, 0, renderGridCells(map, view_->palette_, view_->view_, size));
     paintOverlays(painter, view_->scene_, view_->palette_, view_->overlays_, view_->view_, size);
+    if (view_->tool_) view_->tool_->paint(painter, view_->view_, size);
     painter.end();
     view_->surfacePainted();
     return;
@@ -222,6 +223,16 @@ void GridGlSurface::paintGL() {
     overlaysDirty_ = false;
   }
   painter.drawImage(0, 0, overlays_);
+  if (view_->tool_) {
+    // Drawn by the raster engine too, like the overlays; small, so drawn again on every paint.
+    QImage tool(pixels, QImage::Format_ARGB32_Premultiplied);
+    tool.setDevicePixelRatio(dpr);
+    tool.fill(Qt::transparent);
+    QPainter toolPainter(&tool);
+    view_->tool_->paint(toolPainter, view_->view_, size);
+    toolPainter.end();
+    painter.drawImage(0, 0, tool);
+  }
   painter.end();
   view_->surfacePainted();
 }

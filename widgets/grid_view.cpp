@@ -48,6 +48,7 @@ class GridRasterSurface : public QWidget {
     QPainter painter(this);
     painter.drawImage(0, 0, cells_);
     painter.drawImage(0, 0, overlays_);
+    if (view_->tool_) view_->tool_->paint(painter, view_->view_, size);
     painter.end();
     view_->surfacePainted();
   }
@@ -226,6 +227,19 @@ CellReadout GridView::readoutAt(const QPointF& pixel) const {
   return readCell(*scene_.map, world);
 }
 
+void GridView::setTool(GridTool* tool) {
+  if (tool_ == tool) return;
+  tool_ = tool;
+  dragging_ = false;
+  unsetCursor();
+  toolChanged();
+}
+
+void GridView::toolChanged() {
+  // Both surfaces draw the tool afresh on every paint, over their cached cells and overlays.
+  surface_->update();
+}
+
 QImage GridView::renderImage() const {
   return renderGridImage(scene_, palette_, overlays_, view_, size());
 }
@@ -255,6 +269,7 @@ void GridView::wheelEvent(QWheelEvent* event) {
 }
 
 void GridView::mousePressEvent(QMouseEvent* event) {
+  if (tool_ && tool_->mousePress(*this, event)) return event->accept();
   if (event->button() == Qt::LeftButton || event->button() == Qt::MiddleButton) {
     dragging_ = true;
     dragFrom_ = event->position();
@@ -264,6 +279,7 @@ void GridView::mousePressEvent(QMouseEvent* event) {
 }
 
 void GridView::mouseMoveEvent(QMouseEvent* event) {
+  if (tool_ && tool_->mouseMove(*this, event)) dragging_ = false;
   if (dragging_) {
     panBy(event->position() - dragFrom_);
     dragFrom_ = event->position();
@@ -275,17 +291,20 @@ void GridView::mouseMoveEvent(QMouseEvent* event) {
 }
 
 void GridView::mouseReleaseEvent(QMouseEvent* event) {
+  if (tool_ && tool_->mouseRelease(*this, event)) return event->accept();
   dragging_ = false;
   unsetCursor();
   event->accept();
 }
 
 void GridView::mouseDoubleClickEvent(QMouseEvent* event) {
+  if (tool_ && tool_->mouseDoubleClick(*this, event)) return event->accept();
   fitToMap();
   event->accept();
 }
 
 void GridView::keyPressEvent(QKeyEvent* event) {
+  if (tool_ && tool_->keyPress(*this, event)) return event->accept();
   const QPointF centre(width() / 2.0, height() / 2.0);
   switch (event->key()) {
     case Qt::Key_Plus:

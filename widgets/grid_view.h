@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "grid_image.h"
+#include "grid_tool.h"
 
 class QPainter;
 
@@ -66,6 +67,13 @@ class GridView : public QWidget {
   // What the surface actually shows (GL: its framebuffer).
   QImage grabSurface();
 
+  // The tool that takes the mouse and keys first and draws over the overlays (not owned; nullptr:
+  // none). It is not part of renderImage() or paintVector(): exports show the map, not the tool.
+  void setTool(GridTool* tool);
+  GridTool* tool() const { return tool_; }
+  // Repaints the tool's drawing (the cells and overlays are not drawn again).
+  void toolChanged();
+
   QSize sizeHint() const override { return {800, 600}; }
 
  signals:
@@ -101,6 +109,7 @@ class GridView : public QWidget {
   QString nativeName_;
   QPointF dragFrom_;
   bool dragging_ = false;
+  GridTool* tool_ = nullptr;
 };
 
 }  // namespace sg::ui

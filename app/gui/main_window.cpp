@@ -26,6 +26,7 @@
 #include "log_loader.h"
 #include "parameter_panel.h"
 #include "remap_controller.h"
+#include "reference_editing.h"
 #include "robot_dock.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/models/sensor_model.h"
@@ -105,6 +106,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   createDocks();
   createMenus();
   installRobotMenu(this);
+  installReferenceEditor(this);
   restoreWindowState();
   connectDocument();
   mappedSettings_ = document_->mapperSettings();

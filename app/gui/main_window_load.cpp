@@ -2,8 +2,8 @@
 // Opening logs and reference maps: the load on a worker (LogLoader) with its progress in the status
 // bar, and adopting a loaded log (or a project waiting for its log) as the document's.
 #include <QAction>
-#include <QCoreApplication>
 #include <QComboBox>
+#include <QCoreApplication>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -197,6 +197,8 @@ void MainWindow::closeLog() {
   updateTitle();
 }
 
-bool MainWindow::hasReference() const { return document_->reference().has_value(); }
+bool MainWindow::hasReference() const {
+  return document_->reference().has_value();
+}
 
 }  // namespace sg::app

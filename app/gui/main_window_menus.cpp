@@ -154,6 +154,7 @@ void MainWindow::createMenus() {
   rebuildRecentMenu();
 
   QMenu* edit = menuBar()->addMenu(tr("&Edit"));
+  edit->setObjectName(QStringLiteral("editMenu"));
   edit->addAction(undoAction_);
   edit->addAction(redoAction_);
 
