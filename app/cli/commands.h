@@ -17,5 +17,6 @@ int runRobot(Arguments& args);
 int runRecord(Arguments& args);
 int runSweepCommand(Arguments& args);
 int runSweepMerge(Arguments& args);
+int runOptimize(Arguments& args);
 
 }  // namespace sg::cli

@@ -54,6 +54,11 @@ commands:
                              resumes after Ctrl-C; shards for job arrays (docs/sweeps.md)
   sweep-merge SHARD.csv... --csv ALL.csv [--json]
                              join a sweep's shards, rows in set order
+  optimize --log FILE [sweep's flags, no --grid] --range P=LO:HI ... [--tie ...]
+      --metric M ... [--budget N] [--seed N] [--algorithm crs2+bobyqa|...]
+      [--csv PATH.csv] [--json] [--progress]
+                             search the ranges for the best set of the first --metric
+                             with NLopt, reporting every evaluation (docs/sweeps.md)
   help                       this text
 
 log flags (every command that reads a log):
@@ -93,6 +98,7 @@ int main(int argc, char** argv) {
     if (command == "record") return sg::cli::runRecord(args);
     if (command == "sweep") return sg::cli::runSweepCommand(args);
     if (command == "sweep-merge") return sg::cli::runSweepMerge(args);
+    if (command == "optimize") return sg::cli::runOptimize(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';

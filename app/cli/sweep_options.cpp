@@ -31,6 +31,8 @@ SweepOptions parseSweepOptions(Arguments& args) {
   if (metricTexts.empty())
     throw UsageError("give at least one --metric (vsdns, derivative, two-run, iop, ...)");
   o.metrics = parseSweepMetrics(metricTexts);
+  o.firstMetric =
+      parseSweepMetrics({metricTexts.front().substr(0, metricTexts.front().find(','))}).front();
   for (const std::string& m : o.metrics) {
     if (isReferenceMetric(m) && !o.referencePath)
       throw UsageError("--metric " + m + " compares with a reference map; give --reference REF");

@@ -22,6 +22,7 @@ struct SweepOptions {
   std::optional<std::string> secondLog;
   std::optional<std::string> referencePath;
   std::vector<std::string> metrics;  // canonical (parseSweepMetrics)
+  std::string firstMetric;           // the first one written (optimize's objective)
   std::vector<SweepTie> ties;
   std::vector<std::pair<std::string, std::string>> logFlags;  // as given, for the fingerprint
 };
