@@ -79,7 +79,8 @@ int runSweepCommand(Arguments& args) {
   try {
     sets = sweepSets(o.map.settings.parameters, axes, o.ties);
   } catch (const SweepSpecError& e) {
-    throw UsageError(std::string(o.ties.empty() ? "--grid: " : "--grid/--tie: ") + e.what());
+    const std::string what = e.what();
+    throw UsageError(what.rfind("--tie", 0) == 0 ? what : "--grid: " + what);
   }
 
   SweepHeader header;
