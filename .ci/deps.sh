@@ -12,6 +12,7 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev  # distance transform, PNG
   nlohmann-json3-dev                        # JSON for the CLI and reference maps
   libbenchmark-dev                          # Google Benchmark (tests/bench)
+  libnlopt-cxx-dev                          # NLopt, the optimisers of sonargrid-cli optimize
   libqt6opengl6-dev                         # Qt 6 OpenGL / OpenGLWidgets (the grid view)
   qt6-svg-dev                               # QSvgGenerator (SVG export of the view)
   libgl-dev                                 # OpenGL headers for the grid view

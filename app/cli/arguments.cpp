@@ -97,6 +97,14 @@ int Arguments::integer(const std::string& name, int fallback, int min, int max) 
   return x;
 }
 
+std::vector<std::string> Arguments::positionals() {
+  std::vector<std::string> out;
+  std::vector<std::string> rest;
+  for (const std::string& a : args_) (a.rfind("--", 0) == 0 ? rest : out).push_back(a);
+  args_ = std::move(rest);
+  return out;
+}
+
 void Arguments::finish() const {
   if (!args_.empty()) throw UsageError("unexpected argument '" + args_.front() + "'");
 }

@@ -35,6 +35,9 @@ class Arguments {
   std::string required(const std::string& name);
   double number(const std::string& name, double fallback, double min, double max);
   int integer(const std::string& name, int fallback, int min, int max);
+  // Removes and returns every argument that is not a flag (does not start with "--"), in order:
+  // call it after consuming the flags that take values.
+  std::vector<std::string> positionals();
   // Throws naming the first argument nobody consumed.
   void finish() const;
 

@@ -15,5 +15,8 @@ int runReproduce(Arguments& args);
 int runConvert(Arguments& args);
 int runRobot(Arguments& args);
 int runRecord(Arguments& args);
+int runSweepCommand(Arguments& args);
+int runSweepMerge(Arguments& args);
+int runOptimize(Arguments& args);
 
 }  // namespace sg::cli

@@ -46,13 +46,26 @@ commands:
   record --connect tcp://HOST[:PORT]|serial://DEVICE[?baud=N] --out LOG.sglog
       [--duration S] [--wander] [--robot p3dx|amigobot] [--json]
                              record a live robot's sonar to a log as it streams
+  sweep --log FILE [--second-log FILE] [--reference REF] [map flags]
+      --grid "P=FROM:STEP:TO" | --grid "P=V1,V2,..." ... [--tie "P=1-Q"]...
+      --metric vsdns|derivative|two-run|iop|correlation|auc|... ...
+      [--shard I/N] --csv OUT.csv [--json] [--progress]
+                             one map per parameter set, rows streamed to a CSV that
+                             resumes after Ctrl-C; shards for job arrays (docs/sweeps.md)
+  sweep-merge SHARD.csv... --csv ALL.csv [--json]
+                             join a sweep's shards, rows in set order
+  optimize --log FILE [sweep's flags, no --grid] --range P=LO:HI ... [--tie ...]
+      --metric M ... [--budget N] [--seed N] [--algorithm crs2+bobyqa|...]
+      [--csv PATH.csv] [--json] [--progress]
+                             search the ranges for the best set of the first --metric
+                             with NLopt, reporting every evaluation (docs/sweeps.md)
   help                       this text
 
 log flags (every command that reads a log):
   --format auto|sglog|carmen|player|csv   --lenient   --robot PRESET|GEOMETRY_FILE
   --columns SPEC   --poses FILE           (docs/formats.md)
 
-threads (map, score --log, goodness, reproduce): --threads N, else the environment
+threads (map, score --log, goodness, reproduce, sweep): --threads N, else the environment
   variable SONARGRID_THREADS, else the CPUs the process may use (its affinity mask);
   results are the same for any N
 
@@ -83,6 +96,9 @@ int main(int argc, char** argv) {
     if (command == "convert") return sg::cli::runConvert(args);
     if (command == "robot") return sg::cli::runRobot(args);
     if (command == "record") return sg::cli::runRecord(args);
+    if (command == "sweep") return sg::cli::runSweepCommand(args);
+    if (command == "sweep-merge") return sg::cli::runSweepMerge(args);
+    if (command == "optimize") return sg::cli::runOptimize(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';

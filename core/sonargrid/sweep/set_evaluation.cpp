@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "sonargrid/sweep/set_evaluation.h"
+
+#include <algorithm>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+
+#include "sonargrid/concurrency.h"
+#include "sonargrid/mapper.h"
+
+namespace sg {
+namespace {
+
+// One run; false when cancelled or stopped. Without `stop` (one set alone, optimize's
+// evaluations) the mapper's own threads map it; inside a sweep, where the sets already occupy every
+// thread, scan by scan on this one (Mapper guarantees the two bit-identical).
+bool mapRun(Mapper& mapper, const Dataset& data, const std::atomic<bool>* cancel,
+            const std::atomic<bool>* stop) {
+  if (!stop) return mapper.mapDataset(data, std::numeric_limits<double>::infinity(), cancel);
+  mapper.reset();
+  for (const Scan& scan : data.scans) {
+    if ((cancel && cancel->load(std::memory_order_relaxed)) ||
+        (stop && stop->load(std::memory_order_relaxed)))
+      return false;
+    mapper.integrate(scan);
+  }
+  return true;
+}
+
+std::optional<SetEvaluation> evaluate(const SetEvaluationInput& in, const ParameterSet& set,
+                                      const std::atomic<bool>* cancel,
+                                      const std::atomic<bool>* stop) {
+  if (!in.run) throw std::invalid_argument("a sweep needs a log");
+  if (in.measures.twoRun && !in.secondRun)
+    throw std::invalid_argument("the two-run comparison needs a second log");
+  if (!in.measures.reference.empty() && !in.reference)
+    throw std::invalid_argument("reference metrics need a reference map");
+  for (const Dataset* d : {in.run, in.secondRun}) {
+    if (d && in.settings.pose == PoseSource::Truth && !d->hasTruth())
+      throw MapperError("the log has no true pose for every scan; map with odometry (--pose odom)");
+  }
+  MapperSettings ms;
+  ms.model = in.settings.model;
+  ms.rule = in.settings.rule;
+  ms.parameters = set;
+  ms.pose = in.settings.pose;
+  Mapper mapper(in.run->ring, in.settings.grid, ms);
+  VsdnsAccumulator vsdns;
+  if (in.measures.vsdns) mapper.setObserver(&vsdns);
+  if (!mapRun(mapper, *in.run, cancel, stop)) return std::nullopt;
+  SetEvaluation out;
+  if (in.measures.vsdns) out.vsdns = vsdns.result();
+  const OccupancyMap first = mapper.snapshot();
+  if (in.measures.derivative) out.derivative = derivativeNoise(first);
+  if (in.measures.twoRun) {
+    Mapper again(in.secondRun->ring, in.settings.grid, ms);
+    if (!mapRun(again, *in.secondRun, cancel, stop)) return std::nullopt;
+    out.twoRun = compareTwoRuns(first, again.snapshot());
+  }
+  if (!in.measures.reference.empty()) {
+    ScoreOptions options = in.measures.score;
+    options.metrics = in.measures.reference;
+    out.reference = scoreAgainstReference(first, *in.reference, options);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<SetEvaluation> evaluateSet(const SetEvaluationInput& input, const ParameterSet& set,
+                                         const std::atomic<bool>* cancel) {
+  return evaluate(input, set, cancel, nullptr);
+}
+
+bool evaluateSets(const SetEvaluationInput& input, const std::vector<ParameterSet>& sets,
+                  const std::vector<std::size_t>& indices, const SetFinished& finished,
+                  const std::atomic<bool>* cancel) {
+  for (std::size_t i : indices) {
+    if (i >= sets.size()) throw std::invalid_argument("a sweep index beyond its sets");
+  }
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::atomic<std::size_t> done{0};
+  std::mutex mutex;  // serialises `finished`
+  // Sets are handed out one at a time, so a thread that draws quick sets takes more of them.
+  auto work = [&](unsigned) {
+    while (!stop.load(std::memory_order_relaxed)) {
+      const std::size_t k = next.fetch_add(1, std::memory_order_relaxed);
+      if (k >= indices.size()) return;
+      const std::optional<SetEvaluation> e = evaluate(input, sets[indices[k]], cancel, &stop);
+      if (!e) return;
+      const std::lock_guard<std::mutex> lock(mutex);
+      if (finished) finished(k, *e);
+      done.fetch_add(1);
+    }
+  };
+  const auto threads =
+      static_cast<unsigned>(std::clamp<std::size_t>(indices.size(), 1, parallelThreads()));
+  runParallel(threads, work, [&] { stop.store(true); });
+  return done.load() == indices.size();
+}
+
+}  // namespace sg
