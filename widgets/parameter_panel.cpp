@@ -240,9 +240,12 @@ void ParameterPanel::setSettings(const MapperSettings& settings) {
   const bool same = !rebuild && next.parameters == settings_.parameters;
   // A new model with its paper's rule (the Mapping menu, undo, a project): say that the rule
   // changed too. Settings the panel already shows (its own change coming back) keep the note.
-  const QString note = next.model != settings_.model && next.rule != settings_.rule
+  // (Not the first settings the panel is given: its own defaults were never the user's.)
+  const bool given = property("settingsGiven").toBool();
+  const QString note = given && next.model != settings_.model && next.rule != settings_.rule
                            ? ruleChangeNote(settings_.rule, next.model, next.rule)
                            : QString();
+  setProperty("settingsGiven", true);
   settings_ = next;
   updating_ = true;
   model_->setCurrentIndex(model_->findData(qs(settings_.model)));
@@ -285,7 +288,7 @@ QString ParameterPanel::ruleChangeNote(const std::string& fromRule, const std::s
 }
 
 QString ParameterPanel::statusText() const {
-  return status_->isVisible() ? status_->text() : QString();
+  return status_->isHidden() ? QString() : status_->text();
 }
 
 void ParameterPanel::showRemapTime(double milliseconds) {

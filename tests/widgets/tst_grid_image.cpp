@@ -275,7 +275,7 @@ class TestGridImage : public QObject {
     QTest::newRow("tiny") << 2.301e-86 << 2.301e-86 << "p(occ) 2.3e-86"
                           << "p(occupied)";
     QTest::newRow("near 1") << 1.0 - 4.1e-7 << 1.0 - 4.1e-7 << "p(occ) 1 − 4.1e-07"
-                            << "0.000";
+                            << "p(occ) 1.000";
     QTest::newRow("middle") << 0.25 << 0.25 << "p(occ) 0.250"
                             << "p(occupied)";
     // Log-odds: a different quantity, kept. log(0.25 / 0.75) = −1.0986.

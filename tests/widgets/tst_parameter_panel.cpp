@@ -422,7 +422,8 @@ void TstParameterPanel::resetRestoresDefaults() {
   auto* reset = panel.findChild<QPushButton*>("resetToDefaults");
   QTest::mouseClick(reset, Qt::LeftButton);
   QCOMPARE(spy.count(), 1);
-  QVERIFY(panel.settings().parameters == defaultParameters("murphy", "addition"));
+  // Murphy's model comes with its paper's recursive Bayes (paper 002 §3.3).
+  QVERIFY(panel.settings().parameters == defaultParameters("murphy", "bayes-recursive"));
   QCOMPARE(panel.settings().parameters.get("beta"), 15.0);  // murphy.cpp default
   QCOMPARE(panel.spinBoxFor("beta")->value(), 15.0);
   QTest::mouseClick(reset, Qt::LeftButton);
