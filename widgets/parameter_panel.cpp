@@ -9,6 +9,7 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QPushButton>
+#include <QRegularExpression>
 #include <QScrollArea>
 #include <QScrollBar>
 #include <QSignalBlocker>
@@ -91,6 +92,11 @@ class ParameterSpinBox : public QDoubleSpinBox {
       if (outOfRange) outOfRange(number);
       return QValidator::Intermediate;  // kept in the box until corrected; never committed
     }
+    // A number being typed in scientific notation ("1e", "1e9"): let it be finished, so that the
+    // user sees what was refused rather than a box that swallowed the "e".
+    static const QRegularExpression partial(
+        QStringLiteral("^[+-]?[0-9]*[.,]?[0-9]*[eE][+-]?[0-9]*$"));
+    if (partial.match(number).hasMatch()) return QValidator::Intermediate;
     return state;
   }
 };
