@@ -68,7 +68,9 @@ constexpr FreeMeasure kFreeMeasures[] = {
        if (!positive || !negative || *positive + *negative <= 0.0) return std::nullopt;
        return *positive / (*positive + *negative);
      }},
-    // Map entropy (Martin & Moravec 1996) is one line here once the sweep measures it.
+    // Map entropy (Martin & Moravec 1996, named in paper 002) joins as one line here once the
+    // sweep measures it (a `--metric entropy` whose column sweep_csv.cpp names), lower is better:
+    //   {"entropy", "entropy", -1, [](const SetColumns& c) { return c.get("map_entropy"); }},
 };
 
 struct ReferenceMeasure {
