@@ -62,8 +62,8 @@ CellInspector::CellInspector(QWidget* parent) : QWidget(parent) {
   auto* split = new QSplitter(Qt::Horizontal, this);
   split->addWidget(plot_);
   split->addWidget(list_);
-  split->setStretchFactor(0, 3);
-  split->setStretchFactor(1, 2);
+  split->setStretchFactor(0, 1);
+  split->setStretchFactor(1, 1);
   split->setChildrenCollapsible(false);
 
   auto* top = new QHBoxLayout;
@@ -95,13 +95,13 @@ CellInspector::~CellInspector() {
   pool_.waitForDone();
 }
 
-void CellInspector::setContext(std::shared_ptr<const Dataset> data, const GridSpec& grid,
+void CellInspector::setContext(std::shared_ptr<const Dataset> log, const GridSpec& grid,
                                const MapperSettings& settings) {
-  const bool same = data == data_ && grid_ == grid && sameSettings(settings, settings_);
+  const bool same = log == data_ && grid_ == grid && sameSettings(settings, settings_);
   if (same) return;
   // A new grid (another cell size or log) keeps the same place of the world inspected.
   std::optional<Position> world = cellCentre();
-  data_ = std::move(data);
+  data_ = std::move(log);
   grid_ = grid;
   settings_ = settings;
   if (world) {

@@ -33,7 +33,7 @@ class CellInspector : public QWidget {
 
   // What the map was made of: the log, its grid and the mapper's settings. Traces the inspected
   // cell again when any of them changed (a re-map with new settings or cells).
-  void setContext(std::shared_ptr<const Dataset> data, const GridSpec& grid,
+  void setContext(std::shared_ptr<const Dataset> log, const GridSpec& grid,
                   const MapperSettings& settings);
   // Nothing can be traced (no log, or a live robot's map): says why, and forgets the trace.
   void clearContext(const QString& why);
