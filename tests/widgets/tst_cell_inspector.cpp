@@ -115,11 +115,10 @@ class TestCellInspector : public QObject {
     const std::size_t pick = expected.steps.size() / 2;
     const CellTraceStep& step = expected.steps[pick];
     QTreeWidget* list = inspector->readingList();
-    QTest::mouseClick(list->viewport(), Qt::LeftButton, Qt::NoModifier,
-                      list->visualItemRect(list->topLevelItem(0)).center());
-    list->scrollToItem(list->topLevelItem(static_cast<int>(pick)));
-    QTest::mouseClick(list->viewport(), Qt::LeftButton, Qt::NoModifier,
-                      list->visualItemRect(list->topLevelItem(static_cast<int>(pick))).center());
+    // As the keyboard or a click in the list does: the list's current row changes.
+    list->setCurrentItem(list->topLevelItem(0));
+    QCOMPARE(window.timeline()->currentScan(), expected.steps[0].scan);
+    list->setCurrentItem(list->topLevelItem(static_cast<int>(pick)));
     QCOMPARE(window.timeline()->currentScan(), step.scan);
     QVERIFY(window.beamSonar());
     QCOMPARE(*window.beamSonar(), std::size_t{step.sonar});
