@@ -25,7 +25,7 @@ constexpr double kRangeStep = 0.01;  // m per slider position
 class BeamModelView::Canvas : public QWidget {
  public:
   explicit Canvas(BeamModelView* view) : QWidget(view), view_(view) {
-    setMinimumSize(260, 280);
+    setMinimumSize(230, 280);  // narrow enough that the grid keeps half of a 1280 px window
     setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Expanding);
   }
   void invalidate() {

@@ -125,7 +125,7 @@ void MainWindow::createDocks() {
   tabifyDockWidget(beamDock, summaryDock);
   beamDock->raise();
   // The grid keeps at least half of a 1280 px window; the panel's sliders keep 80 px each.
-  resizeDocks({beamDock, panelDock}, {290, 310}, Qt::Horizontal);
+  resizeDocks({beamDock, panelDock}, {260, 290}, Qt::Horizontal);
   updateSummary();
 }
 
