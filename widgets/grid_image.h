@@ -33,6 +33,9 @@ struct ViewTransform {
 
   // The transform showing the whole grid in `size` with `marginPx` pixels to spare on each side.
   static ViewTransform fitting(const GridSpec& grid, const QSize& size, int marginPx = 12);
+  // The transform showing the box [low, high] (world metres) in `size`, centred.
+  static ViewTransform fittingBox(const Position& low, const Position& high, const QSize& size,
+                                  int marginPx = 12);
   bool operator==(const ViewTransform&) const = default;
 };
 
@@ -80,9 +83,23 @@ void placeRobot(GridScene& scene, const Dataset& data, PoseSource pose, std::siz
 
 // Colour of the area outside the grid; none of the palette's levels is this close to it.
 QColor backgroundColour();
+// Colour of a never-observed cell (sg::kUnknownColour), in every rule: never that of a level.
+QColor unknownColour();
+
+// What the first view shows: where the robot went (every pose of the log, with `marginMetres`
+// around it for the walls it saw) and the reference map, not the farthest phantom echo that
+// stretched the grid. Empty (`low` > `high`) when there is neither.
+struct FocusArea {
+  Position low{1.0, 1.0};
+  Position high{0.0, 0.0};
+  bool empty() const { return !(low.x() <= high.x() && low.y() <= high.y()); }
+};
+FocusArea focusArea(const Dataset* data, PoseSource pose, const ReferenceMap* reference,
+                    double marginMetres = 1.5);
 
 // The cells alone: each pixel takes the level of the cell under its centre (nearest neighbour),
-// coloured by `palette`; pixels outside the grid (or without a map) get backgroundColour().
+// coloured by `palette`, or unknownColour() when no reading ever wrote the cell (whatever its
+// level); pixels outside the grid (or without a map) get backgroundColour().
 QImage renderGridCells(const OccupancyMap* map, const LevelPalette& palette,
                        const ViewTransform& view, const QSize& size);
 
@@ -100,7 +117,8 @@ QImage renderGridImage(const GridScene& scene, const LevelPalette& palette, Over
 void paintGridVector(QPainter& painter, const GridScene& scene, const LevelPalette& palette,
                      Overlays overlays, const ViewTransform& view, const QSize& size);
 
-// Where the legend's swatch of `level` lies in a picture of `size` (tests read it back).
+// Where the legend's swatch of `level` lies in a picture of `size` (tests read it back); level
+// kLevels is the "unknown" swatch, set apart after level 15.
 QRect legendSwatch(int level, const QSize& size);
 
 // What the view reads out under the pointer.

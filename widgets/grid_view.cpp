@@ -142,7 +142,7 @@ void GridView::setMap(std::shared_ptr<const OccupancyMap> map) {
   scene_.map = std::move(map);
   if (!sameGrid && scene_.map) {
     followFit_ = true;
-    view_ = ViewTransform::fitting(scene_.map->spec, size());
+    view_ = fittedView();
     refresh(false);  // the overlays move with the view
     emit viewChanged();
   }
@@ -192,9 +192,30 @@ void GridView::setView(const ViewTransform& view) {
   emit viewChanged();
 }
 
+ViewTransform GridView::fittedView() const {
+  if (!scene_.map) return view_;
+  const GridSpec& g = scene_.map->spec;
+  if (focus_.empty()) return ViewTransform::fitting(g, size());
+  // The focus within the grid: a phantom echo may stretch the grid, never the first view.
+  const Position gridHigh = g.origin + Position(g.widthMetres(), g.heightMetres());
+  const Position low = focus_.low.cwiseMax(g.origin);
+  const Position high = focus_.high.cwiseMin(gridHigh);
+  if (!(low.x() < high.x() && low.y() < high.y())) return ViewTransform::fitting(g, size());
+  return ViewTransform::fittingBox(low, high, size());
+}
+
+void GridView::setFocusArea(const FocusArea& area) {
+  focus_ = area;
+  if (followFit_ && scene_.map) {
+    view_ = fittedView();
+    refresh(false);
+    emit viewChanged();
+  }
+}
+
 void GridView::fitToMap() {
   if (!scene_.map) return;
-  view_ = ViewTransform::fitting(scene_.map->spec, size());
+  view_ = fittedView();
   followFit_ = true;
   refresh(false);
   emit viewChanged();
@@ -256,7 +277,7 @@ QImage GridView::grabSurface() {
 void GridView::resizeEvent(QResizeEvent* event) {
   QWidget::resizeEvent(event);
   if (followFit_ && scene_.map) {
-    view_ = ViewTransform::fitting(scene_.map->spec, size());
+    view_ = fittedView();
     emit viewChanged();
   }
   refresh(false);

@@ -52,7 +52,13 @@ class GridView : public QWidget {
 
   const ViewTransform& view() const { return view_; }
   void setView(const ViewTransform& view);
+  // Fits the view to the focus area (where the robot went and the reference) within the grid, or
+  // to the whole grid when there is none.
   void fitToMap();
+  // The area the fitted view shows (focusArea() in grid_image.h); an empty one fits the grid.
+  // Refits a view that still follows the fit.
+  void setFocusArea(const FocusArea& area);
+  ViewTransform fittedView() const;
   // Zooms by `factor` keeping the world point under `pixel` where it is.
   void zoomAt(double factor, const QPointF& pixel);
   void panBy(const QPointF& pixels);
@@ -106,6 +112,7 @@ class GridView : public QWidget {
   Overlays overlays_ = kAllOverlays;
   ViewTransform view_;
   bool followFit_ = true;  // refit on resize until the user pans or zooms
+  FocusArea focus_;
   QString nativeName_;
   QPointF dragFrom_;
   bool dragging_ = false;

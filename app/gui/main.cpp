@@ -16,6 +16,7 @@
 #include <cmath>
 #include <iostream>
 #include <optional>
+#include <string_view>
 
 #include "cell_inspector.h"
 #include "export_file.h"
@@ -111,24 +112,16 @@ bool inspectCell(sg::app::MainWindow& window, const sg::Position& world) {
   return true;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  QApplication app(argc, argv);
-  QApplication::setOrganizationName(QStringLiteral("SonarGrid"));
-  QApplication::setApplicationName(QStringLiteral("sonargrid"));
-  QApplication::setApplicationDisplayName(QStringLiteral("SonarGrid"));
-  QApplication::setApplicationVersion(QStringLiteral(SONARGRID_VERSION));
-  QApplication::setDesktopFileName(QStringLiteral("sonargrid"));
-
-  QCommandLineParser parser;
+// The command line, the same for the window and for --help / --version.
+void describeOptions(QCommandLineParser& parser) {
   parser.setApplicationDescription(
       QStringLiteral("SonarGrid: build and compare sonar occupancy grids."));
   parser.addHelpOption();
   parser.addVersionOption();
   parser.addPositionalArgument(QStringLiteral("LOG"),
                                QStringLiteral("A log (.sglog, CARMEN, Player, CSV) or a project "
-                                              "(.sgproj) to open."),
+                                              "(.sgproj) to open. A log of a bundled dataset "
+                                              "opens with the dataset's reference map."),
                                QStringLiteral("[LOG | PROJECT.sgproj]"));
   parser.addOptions({
       {QStringLiteral("reference"), QStringLiteral("Reference map (.json, .map, .yaml)."),
@@ -151,6 +144,45 @@ int main(int argc, char** argv) {
        QStringLiteral("Load, map, save a picture of the window to FILE and exit."),
        QStringLiteral("FILE")},
   });
+}
+
+void nameApplication() {
+  QCoreApplication::setOrganizationName(QStringLiteral("SonarGrid"));
+  QCoreApplication::setApplicationName(QStringLiteral("sonargrid"));
+  QCoreApplication::setApplicationVersion(QStringLiteral(SONARGRID_VERSION));
+}
+
+// --help, --help-all, --version (and -h, -?, -v) need no window: they are answered before the
+// QApplication exists, so they print and exit 0 without a display.
+bool asksForTextOnly(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view a = argv[i];
+    if (a == "--") break;
+    if (a == "-h" || a == "-?" || a == "--help" || a == "--help-all" || a == "-v" ||
+        a == "--version")
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (asksForTextOnly(argc, argv)) {
+    QCoreApplication text(argc, argv);
+    nameApplication();
+    QCommandLineParser parser;
+    describeOptions(parser);
+    parser.process(text);  // prints and exits 0
+    return 0;
+  }
+  QApplication app(argc, argv);
+  nameApplication();
+  QApplication::setApplicationDisplayName(QStringLiteral("SonarGrid"));
+  QApplication::setDesktopFileName(QStringLiteral("sonargrid"));
+
+  QCommandLineParser parser;
+  describeOptions(parser);
   parser.process(app);
 
   // The Mapping threads preference; a bad SONARGRID_THREADS is said once here (the core passes it
