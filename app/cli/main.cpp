@@ -59,13 +59,16 @@ commands:
       [--csv PATH.csv] [--json] [--progress]
                              search the ranges for the best set of the first --metric
                              with NLopt, reporting every evaluation (docs/sweeps.md)
+  bench [--quick] [--json] [--threads N] [--progress]
+                             time the standard workloads: office and 100k-reading
+                             re-maps per pair, a 1M-reading load, bytes per cell
   help                       this text
 
 log flags (every command that reads a log):
   --format auto|sglog|carmen|player|csv   --lenient   --robot PRESET|GEOMETRY_FILE
   --columns SPEC   --poses FILE           (docs/formats.md)
 
-threads (map, score --log, goodness, reproduce, sweep): --threads N, else the environment
+threads (map, score --log, goodness, reproduce, sweep, bench): --threads N, else the environment
   variable SONARGRID_THREADS, else the CPUs the process may use (its affinity mask);
   results are the same for any N
 
@@ -99,6 +102,7 @@ int main(int argc, char** argv) {
     if (command == "sweep") return sg::cli::runSweepCommand(args);
     if (command == "sweep-merge") return sg::cli::runSweepMerge(args);
     if (command == "optimize") return sg::cli::runOptimize(args);
+    if (command == "bench") return sg::cli::runBench(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';
