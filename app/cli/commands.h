@@ -18,6 +18,7 @@ int runRecord(Arguments& args);
 int runSweepCommand(Arguments& args);
 int runSweepMerge(Arguments& args);
 int runOptimize(Arguments& args);
+int runGoodnessStudy(Arguments& args);
 int runBench(Arguments& args);
 
 }  // namespace sg::cli
