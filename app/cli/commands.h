@@ -19,5 +19,6 @@ int runSweepCommand(Arguments& args);
 int runSweepMerge(Arguments& args);
 int runOptimize(Arguments& args);
 int runGoodnessStudy(Arguments& args);
+int runBench(Arguments& args);
 
 }  // namespace sg::cli

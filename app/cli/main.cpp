@@ -65,13 +65,16 @@ commands:
                              Spearman's rho between each reference-free measure and each
                              reference metric over a sweep's sets, with bootstrap
                              intervals (docs/goodness-study.md)
+  bench [--quick] [--json] [--threads N] [--progress]
+                             time the standard workloads: office and 100k-reading
+                             re-maps per pair, a 1M-reading load, bytes per cell
   help                       this text
 
 log flags (every command that reads a log):
   --format auto|sglog|carmen|player|csv   --lenient   --robot PRESET|GEOMETRY_FILE
   --columns SPEC   --poses FILE           (docs/formats.md)
 
-threads (map, score --log, goodness, reproduce, sweep): --threads N, else the environment
+threads (map, score --log, goodness, reproduce, sweep, bench): --threads N, else the environment
   variable SONARGRID_THREADS, else the CPUs the process may use (its affinity mask);
   results are the same for any N
 
@@ -106,6 +109,7 @@ int main(int argc, char** argv) {
     if (command == "sweep-merge") return sg::cli::runSweepMerge(args);
     if (command == "optimize") return sg::cli::runOptimize(args);
     if (command == "goodness-study") return sg::cli::runGoodnessStudy(args);
+    if (command == "bench") return sg::cli::runBench(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';
