@@ -2,11 +2,12 @@
 // sonargrid: the desktop app. Only the command line lives here; the window is main_window.cpp.
 //
 //   sonargrid [LOG] [--reference REF] [--model M --rule R --set k=v ...] [--pose odom|truth]
-//             [--cell METRES] [--raster] [--screenshot FILE]
-//   sonargrid PROJECT.sgproj [--raster] [--screenshot FILE]
+//             [--cell METRES] [--raster] [--screenshot FILE] [--metrics-json FILE]
+//   sonargrid PROJECT.sgproj [--raster] [--screenshot FILE] [--metrics-json FILE]
 
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QDockWidget>
 #include <QFileInfo>
 #include <QPixmap>
 #include <QScreen>
@@ -16,6 +17,7 @@
 
 #include "export_file.h"
 #include "main_window.h"
+#include "metrics_panel.h"
 #include "preferences.h"
 #include "project_file.h"
 #include "sonargrid/concurrency.h"
@@ -116,6 +118,10 @@ int main(int argc, char** argv) {
       {QStringLiteral("screenshot"),
        QStringLiteral("Load, map, save a picture of the window to FILE and exit."),
        QStringLiteral("FILE")},
+      {QStringLiteral("metrics-json"),
+       QStringLiteral("Load, map, write the metrics panel's numbers (the keys of sonargrid-cli "
+                      "score --json) to FILE and exit."),
+       QStringLiteral("FILE")},
   });
   parser.process(app);
 
@@ -145,8 +151,10 @@ int main(int argc, char** argv) {
         throw UsageError{QStringLiteral("--cell takes metres in [0.005, 1], got '%1'")
                              .arg(parser.value("cell"))};
     }
-    if (parser.isSet("screenshot") && parser.positionalArguments().isEmpty())
-      throw UsageError{QStringLiteral("--screenshot needs a LOG or a PROJECT to map")};
+    for (const char* option : {"screenshot", "metrics-json"})
+      if (parser.isSet(QString::fromLatin1(option)) && parser.positionalArguments().isEmpty())
+        throw UsageError{QStringLiteral("--%1 needs a LOG or a PROJECT to map")
+                             .arg(QString::fromLatin1(option))};
     if (isProject)
       for (const char* option : {"reference", "model", "rule", "set", "pose", "cell"})
         if (parser.isSet(QString::fromLatin1(option)))
@@ -158,7 +166,8 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  const bool screenshot = parser.isSet("screenshot");
+  // Either writes its files and exits without waiting for the user (and without a display).
+  const bool screenshot = parser.isSet("screenshot") || parser.isSet("metrics-json");
   sg::app::MainWindow window(parser.isSet("raster") ? sg::ui::GridView::Backend::Raster
                                                     : sg::ui::GridView::Backend::Automatic);
   if (screenshot) window.resize(1280, 800);
@@ -183,6 +192,27 @@ int main(int argc, char** argv) {
     if (!window.waitForMap(120000)) {
       std::cerr << "sonargrid: mapping did not finish\n";
       return 1;
+    }
+    if (parser.isSet("metrics-json")) {
+      // The panel's numbers of the map the window shows, as `sonargrid-cli score --json` (and
+      // `goodness --json` without a reference) writes them; the panel is brought to the front so
+      // that the screenshot shows them.
+      auto* panel = window.findChild<sg::ui::MetricsPanel*>();
+      if (auto* dock = window.findChild<QDockWidget*>(QStringLiteral("metricsDock"))) dock->raise();
+      if (!panel || !panel->waitForResult(300000) || !panel->result()) {
+        std::cerr << "sonargrid: the metrics did not finish\n";
+        return 1;
+      }
+      const QString jsonFile = parser.value("metrics-json");
+      const std::string json = sg::ui::metricsJson(*panel->result()) + '\n';
+      const QString error =
+          sg::app::writeFileBytes(jsonFile, QByteArray(json.data(), qsizetype(json.size())));
+      if (!error.isEmpty()) {
+        std::cerr << "sonargrid: " << error.toStdString() << '\n';
+        return 1;
+      }
+      std::cout << "wrote " << jsonFile.toStdString() << '\n';
+      if (!parser.isSet("screenshot")) return 0;
     }
     // Let the window lay out and paint the new map once before grabbing it.
     for (int i = 0; i < 5; ++i) QApplication::processEvents(QEventLoop::AllEvents, 20);

@@ -24,9 +24,10 @@
 #include "csv_import_dialog.h"
 #include "document.h"
 #include "log_loader.h"
+#include "main_window_metrics.h"
 #include "parameter_panel.h"
-#include "remap_controller.h"
 #include "reference_editing.h"
+#include "remap_controller.h"
 #include "robot_dock.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/models/sensor_model.h"
@@ -107,6 +108,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   createMenus();
   installRobotMenu(this);
   installReferenceEditor(this);
+  installMetrics(this);
   restoreWindowState();
   connectDocument();
   mappedSettings_ = document_->mapperSettings();
