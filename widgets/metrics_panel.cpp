@@ -11,6 +11,13 @@
 
 namespace sg::ui {
 
+bool MetricsPanel::GoodnessKey::operator==(const GoodnessKey& o) const {
+  return run == o.run && secondRun == o.secondRun && settings.model == o.settings.model &&
+         settings.rule == o.settings.rule && settings.pose == o.settings.pose &&
+         settings.parameters == o.settings.parameters && cellSize == o.cellSize &&
+         goodness == o.goodness;
+}
+
 MetricsPanel::MetricsPanel(QWidget* parent)
     : QWidget(parent), status_(new QLabel(this)), table_(new QTableWidget(this)) {
   setObjectName(QStringLiteral("metricsPanel"));
@@ -85,20 +92,32 @@ void MetricsPanel::start() {
     show(generation, MetricsResult{});
     return;
   }
+  const GoodnessKey key{input.run, input.secondRun, input.settings, input.cellSize, input.goodness};
+  std::optional<SetEvaluation> known;
+  if (goodnessKey_ && *goodnessKey_ == key && goodness_) {
+    known = goodness_;
+    input.goodness = false;
+    input.secondRun = nullptr;
+  }
   ++running_;
   status_->setText(tr("Computing…"));
-  pool_.start([this, generation, cancel, input = std::move(input)] {
+  pool_.start([this, generation, cancel, key, known, input = std::move(input)] {
     std::optional<MetricsResult> result;
     try {
       result = computeMetrics(input, cancel.get());
+      if (result && known) result->goodness = known;
     } catch (const std::exception& e) {
       result = MetricsResult{};
       result->scoreError = QString::fromUtf8(e.what());
     }
     QMetaObject::invokeMethod(
         this,
-        [this, generation, result = std::move(result)] {
+        [this, generation, key, result = std::move(result)] {
           --running_;
+          if (result && result->goodness) {
+            goodnessKey_ = key;
+            goodness_ = result->goodness;
+          }
           show(generation, result);
         },
         Qt::QueuedConnection);

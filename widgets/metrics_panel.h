@@ -66,6 +66,17 @@ class MetricsPanel : public QWidget {
   QTableWidget* table_;
   MetricsInput input_;
   std::optional<MetricsResult> result_;
+  // Goodness depends on the runs and the settings, not on the map shown (it maps the whole log
+  // again): kept while they stay, so that the timeline playing does not re-map the log each step.
+  struct GoodnessKey {
+    std::shared_ptr<const Dataset> run, secondRun;
+    MapperSettings settings;
+    double cellSize = 0.0;
+    bool goodness = false;
+    bool operator==(const GoodnessKey& o) const;
+  };
+  std::optional<GoodnessKey> goodnessKey_;
+  std::optional<SetEvaluation> goodness_;
   quint64 generation_ = 0;
   quint64 shownGeneration_ = 0;
   bool pending_ = false;
