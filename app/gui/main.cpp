@@ -15,6 +15,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "comparison_table.h"
 #include "export_file.h"
 #include "main_window.h"
 #include "metrics_panel.h"
@@ -213,6 +214,13 @@ int main(int argc, char** argv) {
       }
       std::cout << "wrote " << jsonFile.toStdString() << '\n';
       if (!parser.isSet("screenshot")) return 0;
+      // A project's pinned rows: the comparison table shows them, computed.
+      auto* table = window.findChild<sg::ui::ComparisonTable*>();
+      if (table && !table->rows().empty()) {
+        if (auto* dock = window.findChild<QDockWidget*>(QStringLiteral("comparisonDock")))
+          dock->raise();
+        table->waitForResult(300000);
+      }
     }
     // Let the window lay out and paint the new map once before grabbing it.
     for (int i = 0; i < 5; ++i) QApplication::processEvents(QEventLoop::AllEvents, 20);

@@ -32,7 +32,7 @@ std::vector<ui::ComparisonRow> rowsOf(const Document* document) {
 
 QString rowLabel(const Document* document) {
   const MapperSettings& s = document->mapperSettings();
-  return QStringLiteral("%1 %2 × %3, %4 cm")
+  return QStringLiteral("%1: %2 × %3 @ %4 cm")
       .arg(QStringLiteral("R%1").arg(document->pinnedRows().size() + 1),
            QString::fromStdString(s.model), QString::fromStdString(s.rule))
       .arg(document->cellSize() * 100.0, 0, 'g', 4);

@@ -56,6 +56,8 @@ bool openRoom(app::MainWindow& window, const MapperSettings& settings, double ce
   window.setMapperSettings(settings);
   if (reference && !window.openReference(kRoomReference, true)) return false;
   if (!window.openLog(kRoomLog, true) || !window.waitForMap(120000)) return false;
+  // The window takes room.json beside room.sglog along: closed for a run without a reference.
+  if (!reference) window.document()->setReference(std::nullopt, {});
   auto* panel = window.findChild<MetricsPanel*>();
   return panel && panel->waitForResult(120000) && panel->result();
 }
