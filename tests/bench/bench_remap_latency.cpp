@@ -330,6 +330,10 @@ int main(int argc, char** argv) {
               << summarise(remapMs) << "\n  change -> map delivered on the GUI thread "
               << summarise(delivered) << "\n  GUI thread: the change itself " << summarise(handling)
               << "\n  GUI thread: map delivered -> repainted " << summarise(drawing) << '\n';
+    if (metrics)
+      std::cout << "  metrics panel (" << (referencePath.isEmpty() ? "goodness" : "reference")
+                << "): change -> panel refreshed " << summarise(panelMs)
+                << "\n  metrics panel: its computation alone " << summarise(computeMs) << '\n';
 
     if (probes > 0) {
       QElapsedTimer idle;
