@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include "dmin_overlay.h"
+
 namespace sg::ui {
 
 QPointF ViewTransform::toPixel(const Position& world, const QSize& size) const {
@@ -249,6 +251,7 @@ void paintOverlays(QPainter& p, const GridScene& scene, const LevelPalette& pale
   p.save();
   p.setRenderHint(QPainter::Antialiasing, true);
   p.setBrush(Qt::NoBrush);
+  if (overlays.testFlag(Overlay::Dmin)) paintDminTint(p, scene, view, size);
   if (overlays.testFlag(Overlay::Reference)) {
     p.setPen(QPen(QColor(0, 190, 90), 2.0, Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
     for (const auto& line : scene.referenceLines) p.drawPolyline(polyline(line, view, size));

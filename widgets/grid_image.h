@@ -46,10 +46,11 @@ enum class Overlay {
   Beams = 0x08,      // the current scan's beams, as cones
   Ring = 0x10,       // the sonar ring at the current pose
   Legend = 0x20,     // the 16 levels, bottom left
+  Dmin = 0x40,       // filled cells coloured by their distance to the reference (dmin_overlay.h)
 };
 Q_DECLARE_FLAGS(Overlays, Overlay)
 Q_DECLARE_OPERATORS_FOR_FLAGS(Overlays)
-inline constexpr Overlays kAllOverlays{0x3f};
+inline constexpr Overlays kAllOverlays{0x3f};  // the D_min tint is off until asked for
 
 // One beam of the current scan: a cone from the transducer, `range` long (the maximum range for a
 // reading without echo).
@@ -73,6 +74,10 @@ struct GridScene {
   std::vector<BeamCone> beams;
   // The sonar whose beam is drawn highlighted (the one the beam-model view shows), if any.
   std::optional<std::size_t> highlightedSonar;
+  // One pixel per cell (row 0 the grid's top row) drawn over the cells of a map on `dminSpec`
+  // (Overlay::Dmin; dmin_overlay.h); not drawn over a map on another grid.
+  std::shared_ptr<const QImage> dminTint;
+  GridSpec dminSpec;
 };
 
 // The reference map as polylines in metres (a raster reference contributes none).

@@ -139,7 +139,9 @@ void GridView::setMap(std::shared_ptr<const OccupancyMap> map) {
   const bool sameGrid = scene_.map && map &&
                         (sameGround(scene_.map->spec, map->spec) ||
                          (!followFit_ && grownFrom(scene_.map->spec, map->spec)));
+  const bool tintShown = scene_.dminTint && overlays_.testFlag(Overlay::Dmin);
   scene_.map = std::move(map);
+  if (tintShown) refresh(false);  // the tint is drawn over a map on its own grid only
   if (!sameGrid && scene_.map) {
     followFit_ = true;
     view_ = fittedView();
@@ -166,6 +168,12 @@ void GridView::setHighlightedSonar(std::optional<std::size_t> sonar) {
   if (scene_.highlightedSonar == sonar) return;
   scene_.highlightedSonar = sonar;
   refresh(false);
+}
+
+void GridView::setDminTint(std::shared_ptr<const QImage> tint, const GridSpec& spec) {
+  scene_.dminTint = std::move(tint);
+  scene_.dminSpec = spec;
+  if (overlays_.testFlag(Overlay::Dmin)) refresh(false);
 }
 
 void GridView::setLevelPalette(const LevelPalette& palette) {

@@ -40,6 +40,9 @@ class GridView : public QWidget {
   void setRobotAt(const Dataset* dataset, PoseSource pose, std::size_t scan);
   // Draws this sonar's beam of the current scan highlighted (nullopt: none).
   void setHighlightedSonar(std::optional<std::size_t> sonar);
+  // The D_min tint of the map on `spec` (dmin_overlay.h), drawn while Overlay::Dmin is on and the
+  // shown map is on the same grid; null: none.
+  void setDminTint(std::shared_ptr<const QImage> tint, const GridSpec& spec);
   const GridScene& scene() const { return scene_; }
 
   void setLevelPalette(const LevelPalette& palette);

@@ -2,8 +2,8 @@
 // sonargrid: the desktop app. Only the command line lives here; the window is main_window.cpp.
 //
 //   sonargrid [LOG] [--reference REF] [--model M --rule R --set k=v ...] [--pose odom|truth]
-//             [--cell METRES] [--raster] [--inspect X,Y] [--screenshot FILE]
-//   sonargrid PROJECT.sgproj [--raster] [--inspect X,Y] [--screenshot FILE]
+//             [--cell METRES] [--raster] [--inspect X,Y] [--screenshot FILE] [--metrics-json FILE]
+//   sonargrid PROJECT.sgproj [--raster] [--inspect X,Y] [--screenshot FILE] [--metrics-json FILE]
 
 #include <QApplication>
 #include <QCommandLineParser>
@@ -19,8 +19,10 @@
 #include <string_view>
 
 #include "cell_inspector.h"
+#include "comparison_table.h"
 #include "export_file.h"
 #include "main_window.h"
+#include "metrics_panel.h"
 #include "preferences.h"
 #include "project_file.h"
 #include "sonargrid/concurrency.h"
@@ -143,6 +145,10 @@ void describeOptions(QCommandLineParser& parser) {
       {QStringLiteral("screenshot"),
        QStringLiteral("Load, map, save a picture of the window to FILE and exit."),
        QStringLiteral("FILE")},
+      {QStringLiteral("metrics-json"),
+       QStringLiteral("Load, map, write the metrics panel's numbers (the keys of sonargrid-cli "
+                      "score --json) to FILE and exit."),
+       QStringLiteral("FILE")},
   });
 }
 
@@ -220,8 +226,10 @@ int main(int argc, char** argv) {
         throw UsageError{
             QStringLiteral("--inspect takes X,Y in metres, got '%1'").arg(parser.value("inspect"))};
     }
-    if (parser.isSet("screenshot") && parser.positionalArguments().isEmpty())
-      throw UsageError{QStringLiteral("--screenshot needs a LOG or a PROJECT to map")};
+    for (const char* option : {"screenshot", "metrics-json"})
+      if (parser.isSet(QString::fromLatin1(option)) && parser.positionalArguments().isEmpty())
+        throw UsageError{QStringLiteral("--%1 needs a LOG or a PROJECT to map")
+                             .arg(QString::fromLatin1(option))};
     if (isProject)
       for (const char* option : {"reference", "model", "rule", "set", "pose", "cell"})
         if (parser.isSet(QString::fromLatin1(option)))
@@ -233,7 +241,8 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  const bool screenshot = parser.isSet("screenshot");
+  // Either writes its files and exits without waiting for the user (and without a display).
+  const bool screenshot = parser.isSet("screenshot") || parser.isSet("metrics-json");
   sg::app::MainWindow window(parser.isSet("raster") ? sg::ui::GridView::Backend::Raster
                                                     : sg::ui::GridView::Backend::Automatic);
   if (screenshot) window.resize(1280, 800);
@@ -261,6 +270,34 @@ int main(int argc, char** argv) {
     if (!window.waitForMap(120000)) {  // again: an inspected reading maps up to its time
       std::cerr << "sonargrid: mapping did not finish\n";
       return 1;
+    }
+    if (parser.isSet("metrics-json")) {
+      // The panel's numbers of the map the window shows, as `sonargrid-cli score --json` (and
+      // `goodness --json` without a reference) writes them; the panel is brought to the front so
+      // that the screenshot shows them.
+      auto* panel = window.findChild<sg::ui::MetricsPanel*>();
+      if (auto* dock = window.findChild<QDockWidget*>(QStringLiteral("metricsDock"))) dock->raise();
+      if (!panel || !panel->waitForResult(300000) || !panel->result()) {
+        std::cerr << "sonargrid: the metrics did not finish\n";
+        return 1;
+      }
+      const QString jsonFile = parser.value("metrics-json");
+      const std::string json = sg::ui::metricsJson(*panel->result()) + '\n';
+      const QString error =
+          sg::app::writeFileBytes(jsonFile, QByteArray(json.data(), qsizetype(json.size())));
+      if (!error.isEmpty()) {
+        std::cerr << "sonargrid: " << error.toStdString() << '\n';
+        return 1;
+      }
+      std::cout << "wrote " << jsonFile.toStdString() << '\n';
+      if (!parser.isSet("screenshot")) return 0;
+      // A project's pinned rows: the comparison table shows them, computed.
+      auto* table = window.findChild<sg::ui::ComparisonTable*>();
+      if (table && !table->rows().empty()) {
+        if (auto* dock = window.findChild<QDockWidget*>(QStringLiteral("comparisonDock")))
+          dock->raise();
+        table->waitForResult(300000);
+      }
     }
     // Let the window lay out and paint the new map once before grabbing it.
     for (int i = 0; i < 5; ++i) QApplication::processEvents(QEventLoop::AllEvents, 20);

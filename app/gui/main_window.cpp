@@ -24,6 +24,7 @@
 #include "csv_import_dialog.h"
 #include "document.h"
 #include "log_loader.h"
+#include "main_window_metrics.h"
 #include "parameter_panel.h"
 #include "reference_editing.h"
 #include "remap_controller.h"
@@ -108,6 +109,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   createMenus();
   installRobotMenu(this);
   installReferenceEditor(this);
+  installMetrics(this);
   restoreWindowState();
   connectDocument();
   mappedSettings_ = document_->mapperSettings();

@@ -111,7 +111,8 @@ void MainWindow::createActions() {
       {ui::Overlay::Robot, tr("R&obot")},
       {ui::Overlay::Beams, tr("Current &Beams")},
       {ui::Overlay::Ring, tr("Sonar R&ing")},
-      {ui::Overlay::Legend, tr("&Legend")}};
+      {ui::Overlay::Legend, tr("&Legend")},
+      {ui::Overlay::Dmin, tr("&D_min of Filled Cells")}};
   int key = 1;
   for (const auto& [overlay, title] : overlays) {
     auto* a = new QAction(title, this);
@@ -178,6 +179,7 @@ void MainWindow::createMenus() {
   edit->addAction(redoAction_);
 
   QMenu* view = menuBar()->addMenu(tr("&View"));
+  view->setObjectName(QStringLiteral("viewMenu"));
   view->addAction(fitAction_);
   view->addAction(cellSizeAction_);
   view->addSeparator();

@@ -21,10 +21,13 @@ struct OverlayName {
   ui::Overlay overlay;
   const char* name;
 };
-constexpr OverlayName kOverlayNames[] = {
-    {ui::Overlay::Reference, "reference"}, {ui::Overlay::Path, "path"},
-    {ui::Overlay::Robot, "robot"},         {ui::Overlay::Beams, "beams"},
-    {ui::Overlay::Ring, "ring"},           {ui::Overlay::Legend, "legend"}};
+constexpr OverlayName kOverlayNames[] = {{ui::Overlay::Reference, "reference"},
+                                         {ui::Overlay::Path, "path"},
+                                         {ui::Overlay::Robot, "robot"},
+                                         {ui::Overlay::Beams, "beams"},
+                                         {ui::Overlay::Ring, "ring"},
+                                         {ui::Overlay::Legend, "legend"},
+                                         {ui::Overlay::Dmin, "dmin"}};
 
 QString poseText(PoseSource p) {
   return p == PoseSource::Truth ? QStringLiteral("truth") : QStringLiteral("odom");

@@ -130,6 +130,8 @@ class TstMetrics : public QObject {
   void scoreOfAPerfectMap();
   void scoreRestrictsMetrics();
   void scoreRejectsADisjointReference();
+  void scoreOnACellMask_data();
+  void scoreOnACellMask();
   void scoreOfTheRoomDataset();
 };
 
@@ -659,6 +661,49 @@ void TstMetrics::scoreRejectsADisjointReference() {
   const sg::ReferenceMap ref = sg::parseReferenceJson(json, "far.json");
   QVERIFY_THROWS_EXCEPTION(sg::MetricsError,
                            sg::scoreAgainstReference(blankMap(grid(10, 10)), ref));
+}
+
+void TstMetrics::scoreOnACellMask_data() {
+  // The map of scoreRestrictsMetrics: 3 x 5 cells of 10 cm, a wall on column 0 (APG and map p = 1,
+  // CV 15), one spurious cell (1, 2) with p 0.9 (CV 14, one cell off the wall), p = 0 elsewhere;
+  // every cell is known to the ideal map. The mask lists the 15 cells in linear order (iy = 0
+  // first, three per row).
+  QTest::addColumn<QString>("mask");
+  QTest::addColumn<double>("iopMm");
+  QTest::addColumn<double>("mapScorePct");
+  QTest::addColumn<int>("cells");
+  // Empty mask: every cell. IOP 100·14 / (5·15 + 14); map score 100 · 0.9² / 15 = 5.4 %.
+  QTest::newRow("no mask") << "" << 1400.0 / 89.0 << 5.4 << 15;
+  // Without (1, 2): only the wall is filled (IOP 0) and every scored cell is exact (score 0).
+  QTest::newRow("all but the spurious cell") << "111 111 101 111 111" << 0.0 << 0.0 << 14;
+  // Only (1, 2) and (2, 2): IOP 100·14 / 14 = 100 mm; map score 100 · (0.81 + 0) / 2 = 40.5 %.
+  QTest::newRow("the spurious row's free cells") << "000 000 011 000 000" << 100.0 << 40.5 << 2;
+  // Wall rows 0 and 1 and the whole of column 2: 2 + 5 cells, all exact.
+  QTest::newRow("two wall cells and column 2") << "101 101 001 001 001" << 0.0 << 0.0 << 7;
+  // Nothing: no filled cell (IOP undefined) and no evaluated cell (map score undefined).
+  QTest::newRow("no cell") << "000 000 000 000 000" << kNaN << kNaN << 0;
+}
+
+void TstMetrics::scoreOnACellMask() {
+  QFETCH(QString, mask);
+  QFETCH(double, iopMm);
+  QFETCH(double, mapScorePct);
+  QFETCH(int, cells);
+  const char* json = R"({"format": "sonargrid-reference", "version": 1, "units": "m", "objects": [
+      {"name": "wall", "closed": false, "corners": [[0.05, 0.05], [0.05, 0.45]]}]})";
+  const sg::ReferenceMap ref = sg::parseReferenceJson(json, "wall.json");
+  const sg::OccupancyMap map = mapOf(grid(3, 5), "1 0 0 1 0 0 1 0.9 0 1 0 0 1 0 0");
+  sg::ScoreOptions options;
+  options.metrics = sg::parseMetricList("iop,map_score");
+  for (QChar c : mask)
+    if (c != ' ') options.cellMask.push_back(c == '1' ? 1 : 0);
+  const sg::ReferenceScore s = sg::scoreAgainstReference(map, ref, options);
+  compareOptional(s.value(sg::Metric::Iop), iopMm, 1e-9, "IOP");
+  compareOptional(s.value(sg::Metric::MapScore), mapScorePct, 1e-9, "map score");
+  QCOMPARE(s.cellsEvaluated, static_cast<std::size_t>(cells));
+  // A mask of another grid's size is refused.
+  options.cellMask.assign(14, 1);
+  QVERIFY_THROWS_EXCEPTION(std::invalid_argument, sg::scoreAgainstReference(map, ref, options));
 }
 
 void TstMetrics::scoreOfTheRoomDataset() {

@@ -125,6 +125,21 @@ ReferenceScore scoreAgainstReference(const OccupancyMap& map, const ReferenceMap
       map.observed.size() != n) {
     throw std::invalid_argument("score: the map's layers do not match its grid");
   }
+  if (!options.cellMask.empty()) {
+    if (options.cellMask.size() != n)
+      throw std::invalid_argument("score: the cell mask does not match the map's grid");
+    // Outside the mask a cell is as if no reading had written it: every metric below already
+    // leaves such cells out (IOP through `filled`, the others through `observed`).
+    OccupancyMap masked = map;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (options.cellMask[i] != 0) continue;
+      masked.observed[i] = 0;
+      masked.filled[i] = 0;
+    }
+    ScoreOptions whole = options;
+    whole.cellMask.clear();
+    return scoreAgainstReference(masked, reference, whole);
+  }
   ReferenceScore out;
   out.computed = options.metrics;
   const ActualPositionGrid apg = ActualPositionGrid::rasterise(reference, map.spec);

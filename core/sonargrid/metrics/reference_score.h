@@ -54,6 +54,12 @@ struct ScoreOptions {
   std::set<Metric> metrics{allMetrics().begin(), allMetrics().end()};
   int pairs = kDefaultPathPairs;
   std::uint64_t seed = kDefaultPathSeed;
+  // The cells to score, row-major like the map's GridSpec (non-zero: scored); empty: every cell.
+  // A cell outside the mask counts as never observed and not filled: it leaves IOP, every
+  // agreement and classification metric and the path endpoints, and the path planner treats it as
+  // unknown (passable). How several maps are compared on the cells all of them observed (the GUI's
+  // comparison table; docs/metrics.md, "Scoring on a set of cells").
+  std::vector<std::uint8_t> cellMask;
 };
 
 struct ReferenceScore {
@@ -72,7 +78,8 @@ struct ReferenceScore {
 };
 
 // Throws MetricsError when no reference edge or obstacle touches the map's grid (nothing to score
-// against), std::invalid_argument for a map whose layers do not match its grid.
+// against), std::invalid_argument for a map whose layers (or options.cellMask, when given) do not
+// match its grid.
 ReferenceScore scoreAgainstReference(const OccupancyMap& map, const ReferenceMap& reference,
                                      const ScoreOptions& options = {});
 
