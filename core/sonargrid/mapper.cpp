@@ -441,6 +441,7 @@ OccupancyMap Mapper::snapshot() const {
   m.level.resize(n);
   m.filled.resize(n);
   m.observed.resize(n);
+  m.evidence.resize(n);
   grid_.copyObserved(0, n, m.observed.data());
   // Split between threads for large grids: a 5 cm grid of a room and its ghosts is 200 000 cells
   // and this is on the path from a slider to the picture.
