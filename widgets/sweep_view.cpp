@@ -67,6 +67,11 @@ std::string suggestedValues(const ParameterSpec& spec) {
   return out;
 }
 
+// "1 set", "12 sets" (the app ships no translations, so %n plurals would print "set(s)").
+QString setsText(std::size_t n) {
+  return n == 1 ? SweepView::tr("1 set") : SweepView::tr("%1 sets").arg(n);
+}
+
 std::vector<std::string> splitTies(const QString& text) {
   std::vector<std::string> out;
   for (const QString& part :
@@ -439,8 +444,7 @@ void SweepView::updateSetCount() {
       if (n > kMaxViewSets) break;
     }
     for (const std::string& t : choice_.ties) parseSweepTie(t, base);
-    setCount_->setText(n > kMaxViewSets ? tr("more than %1 sets").arg(kMaxViewSets)
-                                        : tr("%n set(s)", nullptr, static_cast<int>(n)));
+    setCount_->setText(n > kMaxViewSets ? tr("more than %1 sets").arg(kMaxViewSets) : setsText(n));
     setCount_->setStyleSheet(n > kMaxViewSets ? QStringLiteral("color: #b00020") : QString());
     setCount_->setToolTip({});
   } catch (const std::exception& e) {
@@ -536,8 +540,7 @@ bool SweepView::run() {
   progress_->setRange(0, static_cast<int>(job->sets.size()));
   progress_->setValue(0);
   running_ = runner_->start(job);
-  setStatus(tr("Sweeping %n set(s) on %1 threads…", nullptr, static_cast<int>(job->sets.size()))
-                .arg(threadCount()));
+  setStatus(tr("Sweeping %1 on %2 threads…").arg(setsText(job->sets.size())).arg(threadCount()));
   updateButtons();
   return running_;
 }
@@ -586,7 +589,7 @@ void SweepView::onFinished(bool completed, const QString& error) {
     setStatus(tr("The sweep stopped after %1 of %2 sets: %3").arg(done).arg(total).arg(error),
               true);
   else if (completed)
-    setStatus(tr("Swept %n set(s).", nullptr, total));
+    setStatus(tr("Swept %1.").arg(setsText(static_cast<std::size_t>(total))));
   else
     setStatus(tr("Cancelled after %1 of %2 sets; the table holds the finished ones.")
                   .arg(done)
@@ -696,10 +699,10 @@ void SweepView::refreshBest() {
   if (!b) {
     bestLabel_->setText(job_ ? tr("No set has a value of this metric yet.") : QString());
   } else {
-    const QString members = b->members.size() == 1
-                                ? tr("set %1").arg(b->members.front())
-                                : tr("average of %n set(s) of the lowest bin", nullptr,
-                                     static_cast<int>(b->members.size()));
+    const QString members =
+        b->members.size() == 1
+            ? tr("set %1").arg(b->members.front())
+            : tr("average of the %1 of the lowest bin").arg(setsText(b->members.size()));
     bestLabel_->setText(tr("Best: %1 (%2; %3 = %4)")
                             .arg(describe(b->parameters), members, plotColumn_->currentText())
                             .arg(b->criterion, 0, 'g', 6));

@@ -24,6 +24,7 @@
 #include "csv_import_dialog.h"
 #include "document.h"
 #include "log_loader.h"
+#include "main_window_sweep.h"
 #include "parameter_panel.h"
 #include "remap_controller.h"
 #include "reference_editing.h"
@@ -107,6 +108,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   createMenus();
   installRobotMenu(this);
   installReferenceEditor(this);
+  installSweepView(this);
   restoreWindowState();
   connectDocument();
   mappedSettings_ = document_->mapperSettings();
