@@ -6,6 +6,7 @@
 #include <QBarSet>
 #include <QChart>
 #include <QChartView>
+#include <QFont>
 #include <QGridLayout>
 #include <QLineSeries>
 #include <QScatterSeries>
@@ -118,9 +119,12 @@ void SweepCharts::plotParameter(QChart* chart, const std::vector<ParameterSet>& 
   ax->setTitleText(name);
   auto* ay = new QValueAxis;
   ay->setTitleText(metric);
+  ax->setLabelFormat(QStringLiteral("%.3g"));
+  ay->setLabelFormat(QStringLiteral("%.3g"));
   if (std::isfinite(xlo)) {
     const auto [a, b] = padded(xlo, xhi);
     ax->setRange(a, b);
+    ax->applyNiceNumbers();
   }
   if (std::isfinite(ylo)) {
     const auto [a, b] = padded(ylo, yhi);
@@ -137,7 +141,10 @@ void SweepCharts::plotParameter(QChart* chart, const std::vector<ParameterSet>& 
 
 void SweepCharts::plotHistogram(QChart* chart, const QString& metric,
                                 const std::vector<std::optional<double>>& values, int bins) {
-  resetChart(chart, tr("Histogram of %1 over the sets, %2 bins").arg(metric).arg(bins));
+  resetChart(chart,
+             metric == QStringLiteral("vsdns")
+                 ? tr("Histogram of VSDNS over the sets, %1 bins (paper 002 Fig. 7)").arg(bins)
+                 : tr("Histogram of %1 over the sets, %2 bins").arg(metric).arg(bins));
   counts_.clear();
   Histogram h;
   try {
@@ -162,7 +169,10 @@ void SweepCharts::plotHistogram(QChart* chart, const QString& metric,
   auto* ax = new QBarCategoryAxis;
   ax->append(labels);
   ax->setTitleText(tr("%1 (bin centre)").arg(metric));
-  ax->setLabelsAngle(-60);
+  ax->setLabelsAngle(-90);
+  QFont small = ax->labelsFont();
+  small.setPointSizeF(small.pointSizeF() * 0.75);
+  ax->setLabelsFont(small);
   auto* ay = new QValueAxis;
   ay->setRange(0, static_cast<double>(std::max<std::size_t>(most, 1)));
   ay->setLabelFormat(QStringLiteral("%d"));
