@@ -5,16 +5,21 @@
 // applied as one undo step; a cancelled sweep leaving only finished, correct rows; a view deleted
 // mid-sweep; the choice saved as the Document's sweep settings and in the project file.
 
+#include <QAction>
 #include <QDir>
 #include <QElapsedTimer>
+#include <QMenu>
 #include <QPushButton>
+#include <QSettings>
 #include <QSignalSpy>
+#include <QStandardPaths>
 #include <QTableWidget>
 #include <QUndoStack>
 #include <QtTest>
 #include <memory>
 
 #include "document.h"
+#include "main_window.h"
 #include "main_window_sweep.h"
 #include "project_file.h"
 #include "sonargrid/concurrency.h"
@@ -106,6 +111,10 @@ class TestSweepView : public QObject {
 
  private slots:
   void initTestCase() {
+    QStandardPaths::setTestModeEnabled(true);  // the window's QSettings go to a scratch location
+    QCoreApplication::setOrganizationName("SonarGridTest");
+    QCoreApplication::setApplicationName("tst_sweep_view");
+    QSettings().clear();
     data_ = std::make_shared<const Dataset>(readSglog(kRoom.toStdString()));
     core_ = coreSweep(*data_, p2ByP5());
   }
@@ -253,6 +262,29 @@ class TestSweepView : public QObject {
     view_.reset();  // cancels and joins: returns, and nothing arrives afterwards
     QTest::qWait(50);
     QVERIFY(!view_);
+  }
+
+  void menuEntryAndClosingTheAppMidSweep() {
+    auto window = std::make_unique<MainWindow>(ui::GridView::Backend::Raster);
+    window->setCellSize(kCell);
+    window->setMapperSettings(parameterizedBayes());
+    QVERIFY(window->openLog(kRoom, true));
+    auto* action = window->findChild<QAction*>(QStringLiteral("sweepAction"));
+    QVERIFY(action);
+    QCOMPARE(action->shortcut(), QKeySequence(QStringLiteral("Ctrl+Shift+W")));
+    bool inMappingMenu = false;
+    for (QObject* o : action->associatedObjects())
+      if (auto* menu = qobject_cast<QMenu*>(o)) inMappingMenu |= menu->title() == tr("&Mapping");
+    QVERIFY(inMappingMenu);
+    auto* view = window->findChild<ui::SweepView*>(QStringLiteral("sweepView"));
+    QVERIFY(view && !view->isVisible());
+    action->trigger();
+    QVERIFY(view->isVisible());
+    view->setChoice(p2ByP5());
+    QVERIFY2(view->run(), qPrintable(view->statusText()));
+    // The window goes while the sets are mapped: the view cancels and joins its threads.
+    window.reset();
+    QVERIFY(!window);
   }
 
   void choiceIsTheDocumentsSweepSettings() {
