@@ -18,5 +18,6 @@ int runRecord(Arguments& args);
 int runSweepCommand(Arguments& args);
 int runSweepMerge(Arguments& args);
 int runOptimize(Arguments& args);
+int runGoodnessStudy(Arguments& args);
 
 }  // namespace sg::cli

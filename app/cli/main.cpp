@@ -59,6 +59,12 @@ commands:
       [--csv PATH.csv] [--json] [--progress]
                              search the ranges for the best set of the first --metric
                              with NLopt, reporting every evaluation (docs/sweeps.md)
+  goodness-study --log FILE [--second-log FILE] --reference REF [map flags]
+      --grid ... [--tie ...] [--bootstrap N] [--seed N] [--threads N] [--csv OUT.csv]
+      [--json] [--progress]
+                             Spearman's rho between each reference-free measure and each
+                             reference metric over a sweep's sets, with bootstrap
+                             intervals (docs/goodness-study.md)
   help                       this text
 
 log flags (every command that reads a log):
@@ -99,6 +105,7 @@ int main(int argc, char** argv) {
     if (command == "sweep") return sg::cli::runSweepCommand(args);
     if (command == "sweep-merge") return sg::cli::runSweepMerge(args);
     if (command == "optimize") return sg::cli::runOptimize(args);
+    if (command == "goodness-study") return sg::cli::runGoodnessStudy(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';

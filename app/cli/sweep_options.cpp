@@ -12,6 +12,11 @@
 namespace sg::cli {
 
 SweepOptions parseSweepOptions(Arguments& args) {
+  const std::vector<std::string> metricTexts = args.values("--metric");
+  return parseSweepOptions(args, metricTexts);
+}
+
+SweepOptions parseSweepOptions(Arguments& args, const std::vector<std::string>& metricTexts) {
   SweepOptions o;
   {
     // The log-reading flags as written, before parseMapOptions consumes them: they decide how the
@@ -27,7 +32,6 @@ SweepOptions parseSweepOptions(Arguments& args) {
     throw UsageError("--until does not go with a sweep: every set maps the whole log");
   o.secondLog = args.value("--second-log");
   o.referencePath = args.value("--reference");
-  const std::vector<std::string> metricTexts = args.values("--metric");
   if (metricTexts.empty())
     throw UsageError("give at least one --metric (vsdns, derivative, two-run, iop, ...)");
   o.metrics = parseSweepMetrics(metricTexts);

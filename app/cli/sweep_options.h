@@ -30,6 +30,8 @@ struct SweepOptions {
 // Consumes the shared flags. Throws UsageError for bad or missing ones: no --metric, a reference
 // metric without --reference, two-run without --second-log, a bad --tie (naming the flag).
 SweepOptions parseSweepOptions(Arguments& args);
+// The same with the metrics chosen by the caller instead of --metric (`goodness-study`).
+SweepOptions parseSweepOptions(Arguments& args, const std::vector<std::string>& metricTexts);
 
 struct SweepData {
   Dataset run;
