@@ -8,7 +8,9 @@
 #
 # CLI defaults to build/app/cli/sonargrid-cli, OUT_DIR to this folder (the bundled files), DATASET
 # to all of raschke-multi raschke-single arafat-room office. World and route files are read from
-# this folder whatever OUT_DIR is.
+# this folder whatever OUT_DIR is. PHYSICS (environment) picks the simulator's physics preset,
+# `default` unless set (docs/simulator.md, "Presets"): the bundled logs are the default's;
+# PHYSICS=harsh rewrites the logs bundled before issue 16, byte for byte.
 set -eu
 
 here=$(cd "$(dirname "$0")" && pwd)
@@ -16,17 +18,18 @@ cli=${1:-build/app/cli/sonargrid-cli}
 out=${2:-$here}
 [ $# -ge 2 ] && shift 2 || shift $#
 datasets=${*:-raschke-multi raschke-single arafat-room office}
+physics=${PHYSICS:-default}
 
 sim() {
   name=$1
   shift
   mkdir -p "$out/$name"
-  "$cli" simulate --world "$here/$name/world.json" "$@" >/dev/null
+  "$cli" simulate --world "$here/$name/world.json" --physics "$physics" "$@" >/dev/null
 }
 
 # Paper 000 §4: ten in-motion (HIMM) runs and ten 4-stop (HPF) runs per course, K2A, 24 sonars.
 # The robot starts at S (world.json) each time; the runs differ by seed: range noise, misreadings
-# and odometry drift.
+# (when the preset has them) and odometry drift.
 raschke() {
   name=$1
   for run in 01 02 03 04 05 06 07 08 09 10; do

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // `sonargrid-cli goodness`: map quality without a reference (paper 002 §5; docs/cli.md,
-// docs/metrics.md): VSDNS and derivative noise of one run, and the two-run comparison when a second
-// log of the same place is given.
+// docs/metrics.md): VSDNS, derivative noise and map entropy (Martin & Moravec 1996) of one run, and
+// the two-run comparison when a second log of the same place is given.
 
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -9,6 +9,7 @@
 #include "commands.h"
 #include "map_options.h"
 #include "sonargrid/metrics/derivative_noise.h"
+#include "sonargrid/metrics/map_entropy.h"
 #include "sonargrid/metrics/two_run_comparison.h"
 #include "sonargrid/metrics/vsdns.h"
 
@@ -54,6 +55,7 @@ int runGoodness(Arguments& args) {
   const BuiltMap run = buildMap(first, o, o.log, grid, &vsdns);
   const VsdnsAccumulator::Result spread = vsdns.result();
   const DerivativeNoise noise = derivativeNoise(run.map);
+  const MapEntropy entropy = mapEntropy(run.map);
   std::optional<TwoRunComparison> twoRuns;
   std::optional<BuiltMap> secondRun;
   if (second) {
@@ -66,6 +68,9 @@ int runGoodness(Arguments& args) {
     out["vsdns"] = orNull(spread.vsdns);
     out["derivative_noise"] = noise.sum;
     out["derivative_noise_mean"] = orNull(noise.mean);
+    out["entropy_bits"] = entropy.observedBits;
+    out["entropy_bits_mean"] = orNull(entropy.meanBits);
+    out["entropy_bits_grid"] = entropy.totalBits;
     out["two_run_positive"] =
         twoRuns ? nlohmann::ordered_json(twoRuns->positive) : nlohmann::ordered_json(nullptr);
     out["two_run_negative"] =
@@ -90,6 +95,13 @@ int runGoodness(Arguments& args) {
   else
     std::cout << "undefined";
   std::cout << ")\n";
+  std::cout << "  map entropy           " << entropy.observedBits << " bits  (over "
+            << entropy.cellsObserved << " observed cells; mean ";
+  if (entropy.meanBits)
+    std::cout << *entropy.meanBits;
+  else
+    std::cout << "undefined";
+  std::cout << " bits per cell; " << entropy.totalBits << " bits over the whole grid)\n";
   if (twoRuns) {
     std::cout << "  two runs (" << *secondLog << ")  " << twoRuns->positive << " cells agree, "
               << twoRuns->negative

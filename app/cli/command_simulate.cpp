@@ -8,12 +8,14 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.h"
 #include "sonargrid/base/log_error.h"
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/reference/reference_json.h"
+#include "sonargrid/sim/physics_parameters.h"
 #include "sonargrid/sim/simulation.h"
 
 namespace sg::cli {
@@ -26,6 +28,20 @@ bool onOff(Arguments& args, const std::string& name, bool fallback) {
   if (*v == "off") return false;
   throw UsageError(name + " expects on or off, got '" + *v + "'");
 }
+
+// The flags that set a declared physics parameter (physics_parameters.h), flag first.
+constexpr std::pair<const char*, const char*> kPhysicsFlags[] = {
+    {"--noise", "noise"},
+    {"--specular-limit", "specular_limit"},
+    {"--multipath", "multipath"},
+    {"--bounces", "max_bounces"},
+    {"--reflection-loss", "reflection_loss"},
+    {"--misread-rate", "misread_rate"},
+    {"--crosstalk-rate", "crosstalk_rate"},
+    {"--rays", "rays"},
+    {"--min-range", "min_range"},
+    {"--max-range", "max_range"},
+};
 
 std::string metres(double v) {
   std::ostringstream s;
@@ -62,19 +78,35 @@ int runSimulate(Arguments& args) {
     throw UsageError("--duration is not for --route stop-and-scan (it scans at --stops stops)");
   if (duration != 0.0) settings.duration = duration;
   if (const auto seed = args.value("--seed")) settings.physics.seed = parseSeed(*seed);
-  if (onOff(args, "--drift", false)) settings.drift = defaultDrift();
+  const bool drift = onOff(args, "--drift", false);
 
-  // Physics and motion settings (docs/simulator.md gives each default and its source).
+  // Physics (docs/simulator.md gives each default and its source): a preset from the one
+  // declaration (physics_parameters.h), then any flag that names a parameter.
+  const std::string presetName = args.value("--physics").value_or("default");
+  std::optional<ParameterSet> physics = physicsPreset(presetName);
+  if (!physics)
+    throw UsageError("--physics expects clean, default or harsh, got '" + presetName + "'");
+  for (const auto& [flag, name] : kPhysicsFlags) {
+    const std::optional<std::string> text = args.value(flag);
+    if (!text) continue;
+    double value = 0.0;
+    if (name == std::string("multipath")) {
+      if (*text != "on" && *text != "off")
+        throw UsageError(std::string(flag) + " expects on or off, got '" + *text + "'");
+      value = *text == "on" ? 1.0 : 0.0;
+    } else {
+      value = parseNumber(*text, flag);
+    }
+    try {
+      physics->set(name, value);
+    } catch (const ParameterError& e) {
+      throw UsageError(std::string(flag) + ": " + e.what());
+    }
+  }
   SonarPhysics& p = settings.physics;
-  p.rangeNoiseSd = args.number("--noise", 0.01, 0.0, 1.0);
-  p.misreadRate = args.number("--misread-rate", 0.01, 0.0, 1.0);
-  p.crosstalkRate = args.number("--crosstalk-rate", 0.0, 0.0, 1.0);
-  p.maxIncidenceDeg = args.number("--specular-limit", 20.0, 0.0, 90.0);
-  p.specularEcho = onOff(args, "--multipath", true) ? SpecularEcho::Multipath : SpecularEcho::None;
-  p.raysPerCone = args.integer("--rays", 9, 1, 1000);
-  ring.minRange = args.number("--min-range", 0.15, 0.0, 100.0);
-  ring.maxRange = args.number("--max-range", 10.0, 0.01, 100.0);
+  applyPhysics(*physics, p, ring);
   if (!(ring.maxRange > ring.minRange)) throw UsageError("--max-range must exceed --min-range");
+  if (drift) settings.drift = driftErrors(*physics);
   settings.ringHz = args.number("--ring-hz", 10.0, 0.01, 1000.0);
   settings.limits.speed = args.number("--speed", 0.3, 0.01, 10.0);
   args.finish();

@@ -35,6 +35,12 @@ Json runArafat(const Context& ctx);
 
 // ---- shared by the three
 
+// Simulates `folders` (raschke-multi, raschke-single, arafat-room) as datasets/generate.sh does,
+// under the physics `preset`, from the world.json and route.txt of source/<folder>, into
+// out/<folder>/ (with a copy of world.json). InputError naming a missing or malformed file.
+void simulateDatasets(const fs::path& source, const fs::path& out, const std::string& preset,
+                      const std::vector<std::string>& folders);
+
 // InputError naming the file when it is missing or malformed.
 Dataset loadDataset(const fs::path& path);
 ReferenceMap loadReferenceMap(const fs::path& path);

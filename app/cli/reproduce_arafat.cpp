@@ -21,6 +21,7 @@ namespace {
 
 constexpr double kCell = 0.05;  // paper 002 does not give its cell size; the project default
 constexpr const char* kFolder = "arafat-room";
+constexpr double kFoot = 0.3048;                  // metres
 constexpr const char* kRule = "bayes-recursive";  // paper 002 §3.3, eqs 5-6
 
 // The parameterized model's five parameters, P3 also doubled as Table 1 lists it.
@@ -60,6 +61,17 @@ Json runArafat(const Context& ctx) {
       {"parameterized", "Parameterized (P1-P5)",
        settingsFor("parameterized", kRule, run1.ring,
                    {{"p1", 0.02}, {"p2", 0.15}, {"p3", 1.0}, {"p4", 0.98}, {"p5", 15.0}})},
+      // The paper's range unit is never named (Murphy's examples are in feet): the same two
+      // models with Tolerance and P3 = 1 ft = 0.3048 m.
+      {"standard_feet", "Standard (murphy), Tolerance 1 ft",
+       settingsFor("murphy", kRule, run1.ring,
+                   {{"beta", 15.0},
+                    {"tolerance", kFoot},
+                    {"max_occupied", 0.98},
+                    {"max_range", murphyRange}})},
+      {"parameterized_feet", "Parameterized (P1-P5), P3 1 ft",
+       settingsFor("parameterized", kRule, run1.ring,
+                   {{"p1", 0.02}, {"p2", 0.15}, {"p3", kFoot}, {"p4", 0.98}, {"p5", 15.0}})},
   };
   ScoreOptions withReference;
   withReference.metrics = {Metric::Iop, Metric::Correlation, Metric::MapScore,
@@ -103,7 +115,9 @@ Json runArafat(const Context& ctx) {
             "# Paper 002 (Arafat et al.), Fig. 6 rerun\n\n"
             "`run-1` mapped with recursive Bayes by Murphy's standard model (beta 15 deg, "
             "tolerance 1.0 m, Max_occupied 0.98) and by the parameterized model (P1 0.02, P2 0.15, "
-            "P3 1.0 m, P4 0.98, P5 15 deg): `fig6-standard.png`, `fig6-parameterized.png`. The "
+            "P3 1.0 m, P4 0.98, P5 15 deg): `fig6-standard.png`, `fig6-parameterized.png`; and "
+            "the same with Tolerance and P3 read as 1 ft (0.3048 m): `fig6-standard_feet.png`, "
+            "`fig6-parameterized_feet.png`. The "
             "paper judges the two pictures by eye; here the goodness measures of its §5 (the two-"
             "run columns compare with `run-2`) and the reference benchmarks are reported.\n\n" +
                 fig6Table.markdown());

@@ -2,18 +2,22 @@
 // sonargrid: the desktop app. Only the command line lives here; the window is main_window.cpp.
 //
 //   sonargrid [LOG] [--reference REF] [--model M --rule R --set k=v ...] [--pose odom|truth]
-//             [--cell METRES] [--raster] [--screenshot FILE]
-//   sonargrid PROJECT.sgproj [--raster] [--screenshot FILE]
+//             [--cell METRES] [--raster] [--inspect X,Y] [--screenshot FILE]
+//   sonargrid PROJECT.sgproj [--raster] [--inspect X,Y] [--screenshot FILE]
 
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QDockWidget>
+#include <QElapsedTimer>
 #include <QFileInfo>
 #include <QPixmap>
 #include <QScreen>
 #include <QTimer>
 #include <cmath>
 #include <iostream>
+#include <optional>
 
+#include "cell_inspector.h"
 #include "export_file.h"
 #include "main_window.h"
 #include "preferences.h"
@@ -81,6 +85,32 @@ sg::MapperSettings settingsFrom(const QCommandLineParser& args) {
   return s;
 }
 
+// --inspect: traces the cell at `world` and shows its last reading (the timeline moves to it).
+// False, after saying why, when the point is off the grid or the trace fails.
+bool inspectCell(sg::app::MainWindow& window, const sg::Position& world) {
+  sg::ui::CellInspector* inspector = window.cellInspector();
+  if (!inspector->inspectAt(world)) {
+    std::cerr << "sonargrid: --inspect " << world.x() << "," << world.y()
+              << " is outside the grid\n";
+    return false;
+  }
+  if (auto* dock = window.findChild<QDockWidget*>(QStringLiteral("cellInspectorDock"))) {
+    dock->show();
+    dock->raise();
+  }
+  QElapsedTimer clock;
+  clock.start();
+  while (inspector->busy() && clock.elapsed() < 120000)
+    QApplication::processEvents(QEventLoop::AllEvents, 50);
+  if (!inspector->trace()) {
+    std::cerr << "sonargrid: the cell inspector did not trace the cell\n";
+    return false;
+  }
+  if (!inspector->trace()->steps.empty())
+    inspector->selectStep(inspector->trace()->steps.size() - 1);
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -113,6 +143,10 @@ int main(int argc, char** argv) {
       {QStringLiteral("cell"), QStringLiteral("Cell size in metres (default 0.05)."),
        QStringLiteral("METRES")},
       {QStringLiteral("raster"), QStringLiteral("Draw the grid without OpenGL.")},
+      {QStringLiteral("inspect"),
+       QStringLiteral("Inspect the cell at world point X,Y (metres) once mapped: the Cell "
+                      "Inspector traces it and shows its last reading in the beam view."),
+       QStringLiteral("X,Y")},
       {QStringLiteral("screenshot"),
        QStringLiteral("Load, map, save a picture of the window to FILE and exit."),
        QStringLiteral("FILE")},
@@ -134,6 +168,7 @@ int main(int argc, char** argv) {
                                                           Qt::CaseInsensitive) == 0;
   sg::MapperSettings settings;
   double cell = sg::app::MainWindow::lastCellSize();
+  std::optional<sg::Position> inspectAt;
   try {
     if (parser.positionalArguments().size() > 1)
       throw UsageError{QStringLiteral("give at most one LOG")};
@@ -144,6 +179,14 @@ int main(int argc, char** argv) {
       if (!ok || !(cell >= 0.005 && cell <= 1.0))
         throw UsageError{QStringLiteral("--cell takes metres in [0.005, 1], got '%1'")
                              .arg(parser.value("cell"))};
+    }
+    if (parser.isSet("inspect")) {
+      const QStringList xy = parser.value("inspect").split(QLatin1Char(','));
+      bool okX = false, okY = false;
+      if (xy.size() == 2) inspectAt = sg::Position(xy[0].toDouble(&okX), xy[1].toDouble(&okY));
+      if (!okX || !okY || !inspectAt->allFinite())
+        throw UsageError{
+            QStringLiteral("--inspect takes X,Y in metres, got '%1'").arg(parser.value("inspect"))};
     }
     if (parser.isSet("screenshot") && parser.positionalArguments().isEmpty())
       throw UsageError{QStringLiteral("--screenshot needs a LOG or a PROJECT to map")};
@@ -178,9 +221,12 @@ int main(int argc, char** argv) {
   // A crashed session's autosave: offered when the user opened nothing else (SONARGRID_RECOVER
   // answers without a dialog; without a display nothing blocks).
   if (!screenshot && file.isEmpty()) window.offerRecovery();
+  if (inspectAt && !file.isEmpty() && window.waitForMap(120000) &&
+      !inspectCell(window, *inspectAt) && screenshot)
+    return 1;
 
   if (screenshot) {
-    if (!window.waitForMap(120000)) {
+    if (!window.waitForMap(120000)) {  // again: an inspected reading maps up to its time
       std::cerr << "sonargrid: mapping did not finish\n";
       return 1;
     }

@@ -105,6 +105,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
 
   createActions();
   createDocks();
+  createInspector();
   createMenus();
   installRobotMenu(this);
   installReferenceEditor(this);

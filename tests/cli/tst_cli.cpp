@@ -932,8 +932,14 @@ const QStringList kScoreKeys = {"iop_mm",
                                 "f1",
                                 "iou",
                                 "cells_evaluated"};
-const QStringList kGoodnessKeys = {"vsdns", "derivative_noise", "derivative_noise_mean",
-                                   "two_run_positive", "two_run_negative"};
+const QStringList kGoodnessKeys = {"vsdns",
+                                   "derivative_noise",
+                                   "derivative_noise_mean",
+                                   "entropy_bits",
+                                   "entropy_bits_mean",
+                                   "entropy_bits_grid",
+                                   "two_run_positive",
+                                   "two_run_negative"};
 
 QJsonObject jsonOf(const QByteArray& out) {
   return QJsonDocument::fromJson(out).object();

@@ -3,9 +3,11 @@
 // datasets/generate.sh and compared byte for byte, and every user error exits 2 with a message
 // naming what is wrong.
 
+#include <QCryptographicHash>
 #include <QDir>
 #include <QFile>
 #include <QProcess>
+#include <QProcessEnvironment>
 #include <QTemporaryDir>
 #include <QtTest>
 
@@ -52,6 +54,53 @@ QString firstDifference(const QByteArray& fresh, const QByteArray& bundled) {
       .arg(QString::fromUtf8(a.value(i)), QString::fromUtf8(b.value(i)));
 }
 
+// SHA-256 of the bundled logs as `simulate` wrote them before the physics declaration (issue 16):
+// the `harsh` preset must rewrite them byte for byte (docs/simulator.md, "Presets").
+constexpr std::pair<const char*, const char*> kHarshLogs[] = {
+    {"arafat-room/run-1.sglog", "0cd82c5379cf8a2570137738f584b02ae17e401d62dd1a184351bc59f53ff496"},
+    {"arafat-room/run-2.sglog", "10e81c40243ff77dd0a1094136f1496810f26a5674506e3ca4abef37f08a4490"},
+    {"raschke-single/in-motion-01.sglog",
+     "3720c7320c798d60f111a14b4c2430ec2c716d9b2b624469c4ca5db3256a62c3"},
+    {"raschke-single/in-motion-02.sglog",
+     "fbc4ed2e6905e5a3fc99068d33949fa063c9cbdeba0e41eeb874e004c8d53c14"},
+    {"raschke-single/in-motion-03.sglog",
+     "6490cfd5e8683f6c912c7f61d5a9285ac1764b1bb6989abb1ea4e23da5d3f2ab"},
+    {"raschke-single/in-motion-04.sglog",
+     "4006c77b976f7b418dfe9e452995c9a31aa8c12803a03e2efca24caafc4eec7c"},
+    {"raschke-single/in-motion-05.sglog",
+     "e0b74a5e4fce84051603432b3635f516b8f032f56e081fc119d22e6b2ea21974"},
+    {"raschke-single/in-motion-06.sglog",
+     "776e17780051a1a4b9176e2ba0ddb5c843f47df5c4920b0a64b54afe5cef51a5"},
+    {"raschke-single/in-motion-07.sglog",
+     "e8ec1c773d2b41712a2c8ff41a18d62106a275fcf61f6841f6e6b178983f2388"},
+    {"raschke-single/in-motion-08.sglog",
+     "b2577a607195a91d691b67b4a2c132a88bf46a5161161ca779b026b5ef6e36ef"},
+    {"raschke-single/in-motion-09.sglog",
+     "d06600d22862cde02fdeb798ee98950dbf05c4257b3dbf384b4e3544560e724a"},
+    {"raschke-single/in-motion-10.sglog",
+     "3688590fda1978dbb61af1589a865cfbe06a0ba413ba8d97b7a7b82a4cbb0d41"},
+    {"raschke-single/stop-and-scan-01.sglog",
+     "f7901eb6decdec5998c84f8c2a8f24e2a6919f73acf1a90443990069034adabc"},
+    {"raschke-single/stop-and-scan-02.sglog",
+     "5a62b5ec84b983a0315dff274e9cb0087ddc1cdddbb4a87f1b9bb9cad27e586d"},
+    {"raschke-single/stop-and-scan-03.sglog",
+     "a3d6c192395a761952b390019f643fa0d7e40beeb638d0d6a2ff6ddf75f51982"},
+    {"raschke-single/stop-and-scan-04.sglog",
+     "9f78d931eeed39c0ea6db1bbef73c282fbfd1e530542ac7b9d04f17ce1462153"},
+    {"raschke-single/stop-and-scan-05.sglog",
+     "1c36517dda5a467a32bd04ba1206d93ec2d937aba3e9231a0fd9aa5461304dfc"},
+    {"raschke-single/stop-and-scan-06.sglog",
+     "c0a28a1635b1249c23fde2312e21f73cd0b04dde8a66148e8d1bf6fcecb44ef5"},
+    {"raschke-single/stop-and-scan-07.sglog",
+     "132d38eb06749755a4c1077048bf26c7cab82f94e01479f60a6f64902391d504"},
+    {"raschke-single/stop-and-scan-08.sglog",
+     "8f979fe22b25c8100ef84bcaf0437e1eeacaca2f3cc0af3e3ec357458bb5da40"},
+    {"raschke-single/stop-and-scan-09.sglog",
+     "ebfbf567beb7eb6085dbb8bc62f7ede4fb3071b227e6209ad6daab2b4e004fb6"},
+    {"raschke-single/stop-and-scan-10.sglog",
+     "b3b01edd32cd14a260bc0a702bc3e8c4c58f2620e4907d85521332e781e450f1"},
+};
+
 }  // namespace
 
 class TstCliSimulate : public QObject {
@@ -76,6 +125,59 @@ class TstCliSimulate : public QObject {
       QVERIFY2(!b.isEmpty(), qPrintable(name + " is empty"));
       if (a != b) QFAIL(qPrintable(name + " differs at " + firstDifference(a, b)));
     }
+  }
+
+  // `--physics harsh` is today's CLI of before issue 16, byte for byte: datasets/generate.sh with
+  // PHYSICS=harsh rewrites the earlier bundled raschke-single and arafat-room logs.
+  void harshRewritesTheEarlierLogs() {
+    QTemporaryDir dir;
+    QProcess p;
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.insert("PHYSICS", "harsh");
+    p.setProcessEnvironment(env);
+    p.start("sh", {kDatasets + "/generate.sh", kCli, dir.path(), "raschke-single", "arafat-room"});
+    QVERIFY(p.waitForFinished(300000));
+    QVERIFY2(p.exitCode() == 0, p.readAllStandardError().constData());
+    for (const auto& [file, sha] : kHarshLogs) {
+      const QByteArray bytes = contents(dir.filePath(file));
+      QVERIFY2(!bytes.isEmpty(), file);
+      QCOMPARE(QCryptographicHash::hash(bytes, QCryptographicHash::Sha256).toHex(),
+               QByteArray(sha));
+    }
+  }
+
+  // No physics flag is `--physics default`, and that is the declared defaults spelt out.
+  void oneDefault() {
+    QTemporaryDir dir;
+    const QStringList common{"simulate",
+                             "--world",
+                             kDatasets + "/raschke-single/world.json",
+                             "--robot",
+                             "k2a",
+                             "--route",
+                             "in-motion",
+                             "--route-file",
+                             kDatasets + "/raschke-single/route.txt",
+                             "--duration",
+                             "5",
+                             "--seed",
+                             "3"};
+    const QStringList spelt{"--noise",           "0.01", "--specular-limit", "30",
+                            "--multipath",       "on",   "--bounces",        "1",
+                            "--reflection-loss", "6",    "--misread-rate",   "0",
+                            "--crosstalk-rate",  "0",    "--rays",           "9",
+                            "--min-range",       "0.15", "--max-range",      "10"};
+    const QStringList outs{dir.filePath("none.sglog"), dir.filePath("preset.sglog"),
+                           dir.filePath("spelt.sglog"), dir.filePath("harsh.sglog")};
+    const QList<QStringList> extra{{}, {"--physics", "default"}, spelt, {"--physics", "harsh"}};
+    for (qsizetype k = 0; k < outs.size(); ++k) {
+      const Run r = run(kCli, common + extra[k] + QStringList{"--out", outs[k]});
+      QVERIFY2(r.code == 0, r.err.constData());
+    }
+    QVERIFY(!contents(outs[0]).isEmpty());
+    QCOMPARE(contents(outs[1]), contents(outs[0]));
+    QCOMPARE(contents(outs[2]), contents(outs[0]));
+    QVERIFY(contents(outs[3]) != contents(outs[0]));  // the presets do differ
   }
 
   void summaryAndLog() {
@@ -117,6 +219,22 @@ class TstCliSimulate : public QObject {
     QTest::newRow("route through the box")
         << QStringList{"--world", world, "--robot", "k2a", "--route", "u-turn", "--out", "x"}
         << "the route passes";
+    QTest::newRow("unknown physics")
+        << QStringList{"--world",   world,       "--robot", "k2a",   "--route",
+                       "in-motion", "--physics", "gentle",  "--out", "x"}
+        << "--physics expects clean, default or harsh, got 'gentle'";
+    QTest::newRow("specular limit out of range")
+        << QStringList{"--world",          world, "--robot", "k2a", "--route", "in-motion",
+                       "--specular-limit", "95",  "--out",   "x"}
+        << "--specular-limit: parameter 'specular_limit' = 95 is outside [0, 90] deg";
+    QTest::newRow("bounces not whole")
+        << QStringList{"--world",   world,       "--robot", "k2a",   "--route",
+                       "in-motion", "--bounces", "1.5",     "--out", "x"}
+        << "--bounces: parameter 'max_bounces' takes a whole number";
+    QTest::newRow("multipath maybe")
+        << QStringList{"--world",   world,         "--robot", "k2a",   "--route",
+                       "in-motion", "--multipath", "maybe",   "--out", "x"}
+        << "--multipath expects on or off, got 'maybe'";
     QTest::newRow("missing out") << QStringList{"--world", world,       "--robot",      "k2a",
                                                 "--route", "in-motion", "--route-file", route}
                                  << "missing --out";

@@ -15,6 +15,7 @@
 // checked only when SONARGRID_REPRODUCE_SWEEP=1 is set; the "Sensitivity check" tables come from
 // other commands on regenerated logs and are not checked here.
 
+#include <QCryptographicHash>
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -204,8 +205,8 @@ class TestReproduce : public QObject {
 
   // The summary keys of issue 4 item 6; the files each paper writes (docs/cli.md).
   void raschke1990() {
-    const Result r = run(
-        {"reproduce", "raschke1990", "--out", out_.path(), "--datasets", data_.path(), "--json"});
+    const Result r = run({"reproduce", "raschke1990", "--out", out_.path(), "--datasets",
+                          data_.path(), "--json", "--physics", "default"});
     QVERIFY2(r.status == 0, r.err.constData());
     QVERIFY(r.err.isEmpty());
     const QJsonObject j = QJsonDocument::fromJson(r.out).object();
@@ -228,8 +229,8 @@ class TestReproduce : public QObject {
   }
 
   void osullivan() {
-    const Result r =
-        run({"reproduce", "osullivan", "--out", out_.path(), "--datasets", data_.path(), "--json"});
+    const Result r = run({"reproduce", "osullivan", "--out", out_.path(), "--datasets",
+                          data_.path(), "--json", "--physics", "default"});
     QVERIFY2(r.status == 0, r.err.constData());
     const QJsonObject j = QJsonDocument::fromJson(r.out).object()["osullivan"].toObject();
     const QStringList keys{"correlation_pct", "map_score_pct", "map_score_occupied_pct",
@@ -250,7 +251,7 @@ class TestReproduce : public QObject {
 
   void arafat() {
     const Result r = run({"reproduce", "arafat", "--out", out_.path(), "--datasets", data_.path(),
-                          "--json", "--sets", "20", "--threads", "2"});
+                          "--json", "--sets", "20", "--threads", "2", "--physics", "default"});
     QVERIFY2(r.status == 0, r.err.constData());
     QVERIFY(r.err.isEmpty());
     const QJsonObject j = QJsonDocument::fromJson(r.out).object()["arafat"].toObject();
@@ -268,10 +269,11 @@ class TestReproduce : public QObject {
     // The minimum's P1 is tied to its P4 (Table 1, footnote *).
     QCOMPARE(j["optimal_min"]["p1"].toDouble(), 1.0 - j["optimal_min"]["p4"].toDouble());
     for (const QString f :
-         {"fig6.md", "fig6.csv", "fig6-standard.png", "fig6-parameterized.png", "sweep.csv",
-          "histogram.md", "histogram.csv", "lowest-bin.md", "optima.md", "optima.csv",
-          "optimal-histogram.png", "optimal-min.png", "optimal-mean.png",
-          "optimal-derivative-noise.png", "optimal-two-run.png"})
+         {"fig6.md", "fig6.csv", "fig6-standard.png", "fig6-parameterized.png",
+          "fig6-standard_feet.png", "fig6-parameterized_feet.png", "sweep.csv", "histogram.md",
+          "histogram.csv", "lowest-bin.md", "optima.md", "optima.csv", "optimal-histogram.png",
+          "optimal-min.png", "optimal-mean.png", "optimal-derivative-noise.png",
+          "optimal-two-run.png"})
       QVERIFY2(QFileInfo(file("arafat/" + f)).size() > 0, qPrintable(f));
     QFile sweep(file("arafat/sweep.csv"));
     QVERIFY(sweep.open(QIODevice::ReadOnly));
@@ -291,23 +293,51 @@ class TestReproduce : public QObject {
     };
     auto sd = [&](const char* env, const char* m) { return jsonNumber(j, {env, m, "iop_sd_mm"}); };
 
+    // The three presets are reported; the top level is the default's.
+    QCOMPARE(j["physics"].toString(), QString("default"));
+    QCOMPARE(j["presets"].toObject().keys(), (QStringList{"clean", "default", "harsh"}));
+    QCOMPARE(jsonNumber(j, {"presets", "default", "multi", "himm", "iop_mean_mm"}),
+             mean("multi", "himm"));
+    // Table 1 under each preset: "mean / s" in mm, 1 decimal.
+    for (const auto& [m, name] : {std::pair{"himm", "HIMM"}, std::pair{"hpf", "HPF"}}) {
+      for (const auto& [env, envName] :
+           {std::pair{"multi", "multiple"}, std::pair{"single", "single"}}) {
+        const QStringList row =
+            tableRow("**Table 1 under each physics preset**", QString(name) + ", " + envName);
+        QCOMPARE(row.size(), 5);
+        int c = 2;
+        for (const char* preset : {"clean", "default", "harsh"}) {
+          const double pm = jsonNumber(j, {"presets", preset, env, m, "iop_mean_mm"});
+          const double ps = jsonNumber(j, {"presets", preset, env, m, "iop_sd_mm"});
+          QCOMPARE(row[c++], fixed(pm, 1) + " / " + fixed(ps, 1));
+        }
+      }
+    }
+
     // Table 1: paper multiple, ours multiple, paper single, ours single; "mean / s" in mm, the
-    // page rounds ours to 1 decimal.
+    // page rounds ours to 1 decimal. Ours is the default preset's (the bundled logs).
     std::vector<double> ratios;
+    const QJsonObject h = j["presets"]["harsh"].toObject();
     for (const auto& [m, name] : {std::pair{"himm", "HIMM"}, std::pair{"hpf", "HPF"}}) {
       const QStringList row = tableRow("**Table 1**", name);
       QCOMPARE(row.size(), 5);
       QCOMPARE(row[2], fixed(mean("multi", m), 1) + " / " + fixed(sd("multi", m), 1));
       QCOMPARE(row[4], fixed(mean("single", m), 1) + " / " + fixed(sd("single", m), 1));
-      ratios.push_back(mean("multi", m) / row[1].split(" / ")[0].toDouble());
-      ratios.push_back(mean("single", m) / row[3].split(" / ")[0].toDouble());
+      ratios.push_back(jsonNumber(h, {"multi", m, "iop_mean_mm"}) /
+                       row[1].split(" / ")[0].toDouble());
+      ratios.push_back(jsonNumber(h, {"single", m, "iop_mean_mm"}) /
+                       row[3].split(" / ")[0].toDouble());
     }
-
-    // The findings quote the per-run values of table1-runs.csv.
+    // The rest of this check is the page's account of the harsh preset (the logs bundled before
+    // issue 16): its means, and the per-run values of its table1-runs.csv.
+    auto hmean = [&](const char* env, const char* m) {
+      return jsonNumber(h, {env, m, "iop_mean_mm"});
+    };
+    auto hsd = [&](const char* env, const char* m) { return jsonNumber(h, {env, m, "iop_sd_mm"}); };
     std::map<QString, std::map<int, std::pair<double, int>>>
         runs;  // env/method -> run -> iop, cells
     int hpfReadings = 0;
-    for (const auto& row : csvRows(out.filePath("raschke1990/table1-runs.csv"))) {
+    for (const auto& row : csvRows(out.filePath("physics-harsh/raschke1990/table1-runs.csv"))) {
       runs[row.at("environment") + "/" + row.at("method")][row.at("run").toInt()] = {
           row.at("iop_mm").toDouble(), row.at("filled_cells").toInt()};
       if (row.at("method") == "hpf") hpfReadings = row.at("readings").toInt();
@@ -334,8 +364,8 @@ class TestReproduce : public QObject {
     const char* words[] = {"none", "one",   "two",   "three", "four", "five",
                            "six",  "seven", "eight", "nine",  "ten"};
     QVERIFY_IN_DOC(QString::fromUtf8("direction (%1 < %2 mm, %3 < %4 mm)")
-                       .arg(fixed(mean("multi", "himm"), 1), fixed(mean("multi", "hpf"), 1),
-                            fixed(mean("single", "himm"), 1), fixed(mean("single", "hpf"), 1)));
+                       .arg(fixed(hmean("multi", "himm"), 1), fixed(hmean("multi", "hpf"), 1),
+                            fixed(hmean("single", "himm"), 1), fixed(hmean("single", "hpf"), 1)));
     QVERIFY_IN_DOC(
         QString("every HIMM run (%1 mm) is below every HPF run (%2 mm, `table1-runs.csv`)")
             .arg(span("single/himm", all, 0), span("single/hpf", all, 0)));
@@ -351,12 +381,12 @@ class TestReproduce : public QObject {
                             fixed(*std::max_element(ratios.begin(), ratios.end()), 1)));
     QVERIFY_IN_DOC(
         QString("HPF's means are close (%1 vs %2 mm) but its spread is huge (s %3 and %4 mm)")
-            .arg(fixed(mean("multi", "hpf"), 1), fixed(mean("single", "hpf"), 1),
-                 fixed(sd("multi", "hpf"), 1), fixed(sd("single", "hpf"), 1)));
+            .arg(fixed(hmean("multi", "hpf"), 1), fixed(hmean("single", "hpf"), 1),
+                 fixed(hsd("multi", "hpf"), 1), fixed(hsd("single", "hpf"), 1)));
     QVERIFY_IN_DOC(
         QString("HIMM's disagrees: %1 mm with multiple obstacles against %2 mm with one box")
-            .arg(fixed(mean("multi", "himm"), 1), fixed(mean("single", "himm"), 1)));
-    QVERIFY(std::max(sd("multi", "himm"), sd("single", "himm")) < 19.0);  // "s under 19 mm"
+            .arg(fixed(hmean("multi", "himm"), 1), fixed(hmean("single", "himm"), 1)));
+    QVERIFY(std::max(hsd("multi", "himm"), hsd("single", "himm")) < 19.0);  // "s under 19 mm"
     QVERIFY_IN_DOC(QString("Each HPF run has only %1 readings").arg(hpfReadings));
     std::vector<int> quiet{1, 3, 4, 5, 6, 9};
     std::vector<int> quietCells;
@@ -410,38 +440,64 @@ class TestReproduce : public QObject {
       lowOccupied = std::min(lowOccupied, o);
       highOccupied = std::max(highOccupied, o);
     }
-    // The findings and the explanation quote the same numbers, and differences of them.
-    const double c2 = jsonNumber(j, {"models", "2dg", "correlation_pct"});
-    const double cm = jsonNumber(j, {"models", "mtm", "correlation_pct"});
-    const double f2 = jsonNumber(j, {"models", "2dg", "path_false_positive_pct"});
-    const double fm = jsonNumber(j, {"models", "mtm", "path_false_positive_pct"});
+    // Both tables under each preset: "<preset>, <row>", the four benchmarks to 2 decimals.
+    for (const char* preset : {"clean", "default", "harsh"}) {
+      const QJsonObject pj = j["presets"][QString(preset)].toObject();
+      for (const auto& row : rows) {
+        const QStringList cells =
+            tableRow("**Paper 001 under each physics preset**", QString(preset) + ", " + row.name);
+        QCOMPARE(cells.size(), 5);
+        for (int k = 0; k < 4; ++k)
+          QCOMPARE(cells[1 + k],
+                   fixed(jsonNumber(pj, {row.table, row.variant, keys[k]}), 2) + " %");
+      }
+    }
+    // The findings' details and the explanation are the page's account of the harsh preset (the
+    // logs bundled before issue 16): the same numbers, and differences of them.
+    const QJsonObject h = j["presets"]["harsh"].toObject();
+    auto hpct = [&](const char* table, const char* variant, const QString& key) {
+      return fixed(jsonNumber(h, {table, variant, key}), 2);
+    };
+    lowCorrelation = 1e300, highCorrelation = -1e300, lowOccupied = 1e300, highOccupied = -1e300;
+    for (const auto& row : rows) {
+      const double c = jsonNumber(h, {row.table, row.variant, "correlation_pct"});
+      const double o = jsonNumber(h, {row.table, row.variant, "map_score_occupied_pct"});
+      lowCorrelation = std::min(lowCorrelation, c);
+      highCorrelation = std::max(highCorrelation, c);
+      lowOccupied = std::min(lowOccupied, o);
+      highOccupied = std::max(highOccupied, o);
+    }
+    const double c2 = jsonNumber(h, {"models", "2dg", "correlation_pct"});
+    const double cm = jsonNumber(h, {"models", "mtm", "correlation_pct"});
+    const double f2 = jsonNumber(h, {"models", "2dg", "path_false_positive_pct"});
+    const double fm = jsonNumber(h, {"models", "mtm", "path_false_positive_pct"});
     QVERIFY_IN_DOC(
         QString("(%1 vs %2 %, +%3 points)").arg(fixed(cm, 2), fixed(c2, 2), fixed(cm - c2, 2)));
     QVERIFY_IN_DOC(
         QString("(%1 vs %2 %, %3 points fewer").arg(fixed(fm, 2), fixed(f2, 2), fixed(f2 - fm, 2)));
     QVERIFY_IN_DOC(QString("loses on Map Score (%1 vs %2 %) and Map Score occupied (%3 vs %4 %)")
-                       .arg(pct("models", "mtm", "map_score_pct"),
-                            pct("models", "2dg", "map_score_pct"),
-                            pct("models", "mtm", "map_score_occupied_pct"),
-                            pct("models", "2dg", "map_score_occupied_pct")));
+                       .arg(hpct("models", "mtm", "map_score_pct"),
+                            hpct("models", "2dg", "map_score_pct"),
+                            hpct("models", "mtm", "map_score_occupied_pct"),
+                            hpct("models", "2dg", "map_score_occupied_pct")));
     QVERIFY_IN_DOC(QString("Correlation %1 vs %2 %, Map Score %3 vs %4 %, occupied %5 vs %6 %, "
                            "Path false positives %7 vs %8 %")
-                       .arg(pct("rules", "simple", keys[0]), pct("rules", "bayes", keys[0]),
-                            pct("rules", "simple", keys[1]), pct("rules", "bayes", keys[1]),
-                            pct("rules", "simple", keys[2]), pct("rules", "bayes", keys[2]),
-                            pct("rules", "simple", keys[3]), pct("rules", "bayes", keys[3])));
+                       .arg(hpct("rules", "simple", keys[0]), hpct("rules", "bayes", keys[0]),
+                            hpct("rules", "simple", keys[1]), hpct("rules", "bayes", keys[1]),
+                            hpct("rules", "simple", keys[2]), hpct("rules", "bayes", keys[2]),
+                            hpct("rules", "simple", keys[3]), hpct("rules", "bayes", keys[3])));
     QVERIFY_IN_DOC(QString("about even on Correlation (%1 vs %2 %) and Map Score (%3 vs %4 %), "
                            "better on Map Score occupied (%5 vs %6 %), worse on Path false "
                            "positives (%7 vs %8 %)")
-                       .arg(pct("rules", "log", keys[0]), pct("rules", "bayes", keys[0]),
-                            pct("rules", "log", keys[1]), pct("rules", "bayes", keys[1]),
-                            pct("rules", "log", keys[2]), pct("rules", "bayes", keys[2]),
-                            pct("rules", "log", keys[3]), pct("rules", "bayes", keys[3])));
+                       .arg(hpct("rules", "log", keys[0]), hpct("rules", "bayes", keys[0]),
+                            hpct("rules", "log", keys[1]), hpct("rules", "bayes", keys[1]),
+                            hpct("rules", "log", keys[2]), hpct("rules", "bayes", keys[2]),
+                            hpct("rules", "log", keys[3]), hpct("rules", "bayes", keys[3])));
     QVERIFY_IN_DOC(QString::fromUtf8("(%1–%2 % against 53–63 %; %3–%4 % against")
                        .arg(fixed(lowCorrelation, 2), fixed(highCorrelation, 2),
                             fixed(lowOccupied, 2), fixed(highOccupied, 2)));
     std::map<int, double> logPath;  // the multiple-target model with the log rule, per run
-    for (const auto& row : csvRows(out.filePath("osullivan/runs.csv"))) {
+    for (const auto& row : csvRows(out.filePath("physics-harsh/osullivan/runs.csv"))) {
       if (row.at("variant") == "mtm")
         logPath[row.at("run").toInt()] = row.at("path_false_positive_pct").toDouble();
     }
@@ -456,11 +512,17 @@ class TestReproduce : public QObject {
     const Result r = run({"reproduce", "arafat", "--out", out.path(), "--datasets", kBundled,
                           "--json", "--sets", "1"});
     QVERIFY2(r.status == 0, r.err.constData());
-    const QJsonObject j =
-        QJsonDocument::fromJson(r.out).object()["arafat"].toObject()["fig6"].toObject();
+    const QJsonObject all = QJsonDocument::fromJson(r.out).object()["arafat"].toObject();
+    // The harsh preset's logs, simulated in process, are the logs bundled before issue 16 byte
+    // for byte (the SHA-256 of datasets/arafat-room/run-1.sglog then; tst_cli_simulate pins all).
+    QFile harsh(out.filePath("datasets-harsh/arafat-room/run-1.sglog"));
+    QVERIFY(harsh.open(QIODevice::ReadOnly));
+    QCOMPARE(QCryptographicHash::hash(harsh.readAll(), QCryptographicHash::Sha256).toHex(),
+             QByteArray("0cd82c5379cf8a2570137738f584b02ae17e401d62dd1a184351bc59f53ff496"));
+    const QJsonObject j = all["fig6"].toObject();
     // The page's digits: VSDNS 6 decimals, derivative noise 2, counts, IOP 1, percentages 2.
-    auto row = [&](const char* key) {
-      const QJsonObject m = j[key].toObject();
+    auto rowOf = [&](const QJsonObject& fig6, const QString& key) {
+      const QJsonObject m = fig6[key].toObject();
       return QStringList{fixed(m["vsdns"].toDouble(), 6),
                          fixed(m["derivative_noise"].toDouble(), 2),
                          QString("%1 / %2")
@@ -472,17 +534,36 @@ class TestReproduce : public QObject {
                          fixed(m["map_score_occupied_pct"].toDouble(), 2) + " %",
                          fixed(m["path_false_positive_pct"].toDouble(), 2) + " %"};
     };
+    auto row = [&](const char* key) { return rowOf(j, QString(key)); };
     const QStringList standard = row("standard");
     const QStringList parameterized = row("parameterized");
+    // P3 and Tolerance as 1 ft (0.3048 m), and every preset's four rows.
+    QCOMPARE(tableRow("**Fig. 6**", "Standard (Murphy), 1 ft, ours").mid(1), row("standard_feet"));
+    QCOMPARE(tableRow("**Fig. 6**", "Parameterized, 1 ft, ours").mid(1), row("parameterized_feet"));
+    const std::pair<const char*, const char*> models[] = {
+        {"standard", "Standard, 1.0 m"},
+        {"parameterized", "Parameterized, 1.0 m"},
+        {"standard_feet", "Standard, 1 ft"},
+        {"parameterized_feet", "Parameterized, 1 ft"}};
+    for (const char* preset : {"clean", "default", "harsh"}) {
+      const QJsonObject fig6 = all["presets"][QString(preset)]["fig6"].toObject();
+      for (const auto& [key, label] : models) {
+        const QString first = QString(preset) + ", " + label;
+        QCOMPARE(tableRow("**Fig. 6 under each physics preset**", first).mid(1),
+                 rowOf(fig6, QString(key)));
+      }
+    }
     QCOMPARE(tableRow("**Fig. 6**", "Standard (Murphy), ours").mid(1), standard);
     QCOMPARE(tableRow("**Fig. 6**", "Parameterized, ours").mid(1), parameterized);
-    QVERIFY_IN_DOC(QString("(VSDNS %1 vs %2, derivative noise %3 vs %4)")
-                       .arg(parameterized[0], standard[0], parameterized[1], standard[1]));
+    // The findings' details are the page's account of the harsh preset.
+    const QStringList hs = rowOf(all["presets"]["harsh"]["fig6"].toObject(), "standard");
+    const QStringList hp = rowOf(all["presets"]["harsh"]["fig6"].toObject(), "parameterized");
+    QVERIFY_IN_DOC(
+        QString("(VSDNS %1 vs %2, derivative noise %3 vs %4)").arg(hp[0], hs[0], hp[1], hs[1]));
     QVERIFY_IN_DOC(QString("(IOP %1 vs %2, Correlation %3 vs %4, Map Score %5 vs %6, Path false "
                            "positives %7 vs %8)")
-                       .arg(standard[3].chopped(3), parameterized[3], standard[4].chopped(2),
-                            parameterized[4], standard[5].chopped(2), parameterized[5],
-                            standard[7].chopped(2), parameterized[7]));
+                       .arg(hs[3].chopped(3), hp[3], hs[4].chopped(2), hp[4], hs[5].chopped(2),
+                            hp[5], hs[7].chopped(2), hp[7]));
   }
 
   // The full sweep (1440 sets, two maps each): minutes on two cores, so only on request, and
@@ -493,8 +574,9 @@ class TestReproduce : public QObject {
     if (qEnvironmentVariable("SONARGRID_REPRODUCE_SWEEP") != "1")
       QSKIP("the 1440-set sweep takes minutes; set SONARGRID_REPRODUCE_SWEEP=1 to check it");
     QTemporaryDir out;
-    const Result r = run(
-        {"reproduce", "arafat", "--out", out.path(), "--datasets", kBundled, "--json"}, 3600000);
+    const Result r = run({"reproduce", "arafat", "--out", out.path(), "--datasets", kBundled,
+                          "--json", "--physics", "harsh"},
+                         3600000);
     QVERIFY2(r.status == 0, r.err.constData());
     const QJsonObject j = QJsonDocument::fromJson(r.out).object()["arafat"].toObject();
     QCOMPARE(j["sweep_sets"].toInt(), 1440);
@@ -558,6 +640,8 @@ class TestReproduce : public QObject {
         << QStringList{"osullivan", "--out", "x", "--sets", "3"} << "--sets";
     QTest::newRow("--sets too big")
         << QStringList{"arafat", "--out", "x", "--sets", "1441"} << "--sets";
+    QTest::newRow("unknown physics")
+        << QStringList{"arafat", "--out", "x", "--physics", "gentle"} << "--physics";
   }
   // Bad arguments: exit status 2, one line naming the problem.
   void errors() {

@@ -161,6 +161,8 @@ int main(int argc, char** argv) {
     physics.raysPerCone = 9;
     physics.maxIncidenceDeg = 30.0;
     physics.misreadRate = 0.0;
+    physics.specularEcho = sg::SpecularEcho::None;  // the reflected ray is lost: no multipath
+    physics.crosstalkRate = 0.0;
     physics.rangeDecimals = 3;
     physics.firingInterval = 0.0025;
     physics.seed = kSeed;

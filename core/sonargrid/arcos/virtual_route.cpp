@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/arcos/virtual_route.h"
 
+#include "sonargrid/sim/physics_parameters.h"
+
+#include <cstdint>
 #include <sstream>
 #include <string>
 
@@ -17,11 +20,11 @@ std::string fixed(double v, int decimals) {
 }  // namespace
 
 void useSimulatorSonar(SonarPhysics& p) {
-  p.rangeNoiseSd = 0.01;
-  p.misreadRate = 0.01;
-  p.maxIncidenceDeg = 20.0;
-  p.specularEcho = SpecularEcho::Multipath;
-  p.raysPerCone = 9;
+  // The declared defaults (physics_parameters.h); the robot's own ring keeps its range window.
+  const std::uint64_t seed = p.seed;
+  SonarRing scratch;
+  applyPhysics(defaultPhysicsParameters(), p, scratch);
+  p.seed = seed;
 }
 
 VirtualRobotSettings virtualRobotSettings(const RobotParameters& robot, double timeScale) {

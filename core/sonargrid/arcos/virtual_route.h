@@ -20,8 +20,8 @@ class RouteClearanceError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-// The sonar of `sonargrid-cli simulate` with its defaults (docs/simulator.md): 9 rays per cone,
-// specular limit 20 degrees, multipath, 1 % misreadings, 1 cm noise. The seed is left as it is.
+// The sonar of `sonargrid-cli simulate` with its declared defaults (physics_parameters.h,
+// docs/simulator.md, the `default` preset). The seed is left as it is.
 void useSimulatorSonar(SonarPhysics& physics);
 
 // The robot's settings for `robot` (a preset of robotPreset()) whose clock runs `timeScale`

@@ -39,6 +39,17 @@ double quantize(double range, const SonarPhysics& physics) {
   return std::round(range * scale) / scale;
 }
 
+// Path loss of a multipath echo (docs/simulator.md, "Multipath"): spherical spreading from the
+// image source leaves a margin of 20 log10(maxRange / range) dB over a direct echo from maxRange,
+// the weakest the sensor detects; each reflection costs reflectionLossDb of it. Without loss (or
+// without a reflection) every echo shorter than maxRange is heard, as before the loss existed.
+bool heardAfterReflections(int reflections, double range, double maxRange,
+                           const SonarPhysics& physics) {
+  if (reflections == 0 || physics.reflectionLossDb <= 0.0) return true;
+  return static_cast<double>(reflections) * physics.reflectionLossDb <=
+         20.0 * std::log10(maxRange / range);
+}
+
 }  // namespace
 
 std::vector<Segment> polygonSegments(std::span<const Position> corners, bool closed) {
@@ -122,7 +133,10 @@ std::optional<Echo> traceRay(const SonarWorld& world, const Position& origin,
     travelled += hit->distance;
     if (travelled >= maxRange) return std::nullopt;
     const Position point = from + hit->distance * dir;
-    if (echoesBack(*hit, physics)) return Echo{travelled, point};
+    if (echoesBack(*hit, physics)) {
+      if (!heardAfterReflections(bounce, travelled, maxRange, physics)) return std::nullopt;
+      return Echo{travelled, point};
+    }
     // Mirror reflection: the normal component of the direction changes sign.
     dir = dir - 2.0 * dir.dot(hit->normal) * hit->normal;
     from = point;

@@ -19,6 +19,7 @@
 
 #include "sonargrid/dataset.h"
 #include "sonargrid/pose.h"
+#include "sonargrid/sim/physics_defaults.h"
 #include "sonargrid/sonar_ring.h"
 
 namespace sg {
@@ -65,21 +66,35 @@ enum class SpecularEcho {
 // to the first (reference maps store obstacles the same way).
 std::vector<Segment> polygonSegments(std::span<const Position> corners, bool closed);
 
+// Member defaults are the declared ones (physics_parameters.h, docs/simulator.md): the `default`
+// preset. The bundled room log and unit tests that need other values spell them out.
 struct SonarPhysics {
-  double rangeNoiseSd = 0.01;     // metres; zero-mean Gaussian added to every echo
-  int raysPerCone = 9;            // rays spread evenly from edge to edge of the aperture (>= 1)
-  double maxIncidenceDeg = 60.0;  // beyond this angle from the surface normal the sound reflects
-                                  // away (specular) and that ray hears nothing
-  double misreadRate = 0.0;       // probability that a reading is a phantom echo, uniform over
-                                  // [minRange, maxRange) whatever lies in front of the sensor
-  int rangeDecimals = 3;          // readings are reported to 10^-rangeDecimals m (ARCOS sends whole
-                                  // millimetres); negative keeps full precision
+  // Metres: zero-mean Gaussian noise added to every echo.
+  double rangeNoiseSd = physics_default::kNoise;
+  // Rays spread evenly from edge to edge of the aperture (>= 1).
+  int raysPerCone = physics_default::kRaysPerCone;
+  // Beyond this angle from the surface normal the sound reflects away (specular) and that ray
+  // hears nothing from that surface.
+  double maxIncidenceDeg = physics_default::kSpecularLimitDeg;
+  // Probability that a reading is a phantom echo, uniform over [minRange, maxRange) whatever lies
+  // in front of the sensor.
+  double misreadRate = physics_default::kMisreadRate;
+  // Readings are reported to 10^-rangeDecimals m (ARCOS sends whole millimetres); negative keeps
+  // full precision.
+  int rangeDecimals = 3;
   double firingInterval = 0.0025;  // seconds between successive transducers of one scan
-  SpecularEcho specularEcho = SpecularEcho::None;
-  int maxBounces = 3;          // multipath: reflections followed before the ray is given up
-  double crosstalkRate = 0.0;  // probability that a sonar also hears a neighbour's echo (the ring
-                               // neighbours i - 1 and i + 1, one picked at random); the earlier
-                               // of its own echo and the neighbour's is reported
+  SpecularEcho specularEcho =
+      physics_default::kMultipath ? SpecularEcho::Multipath : SpecularEcho::None;
+  // Multipath: reflections followed before the ray is given up.
+  int maxBounces = physics_default::kMaxBounces;
+  // Multipath path loss: each specular reflection costs this many decibels, and an echo after k
+  // reflections with folded range r is heard only if k * loss <= 20 log10(maxRange / r), the
+  // margin that spherical spreading leaves over a direct echo from maxRange (docs/simulator.md).
+  // 0 dB keeps every reflected echo shorter than maxRange.
+  double reflectionLossDb = physics_default::kReflectionLossDb;
+  // Probability that a sonar also hears a neighbour's echo (the ring neighbours i - 1 and i + 1,
+  // one picked at random); the earlier of its own echo and the neighbour's is reported.
+  double crosstalkRate = physics_default::kCrosstalkRate;
   std::uint64_t seed = 1;
 };
 
@@ -123,7 +138,8 @@ struct Echo {
 
 // One ray followed through the world: its first surface if that echoes back; otherwise nothing, or
 // under SpecularEcho::Multipath the first later surface that does, up to physics.maxBounces
-// reflections. Nothing when the path reaches maxRange first.
+// reflections. Nothing when the path reaches maxRange first, or when the reflections' loss
+// exceeds the spreading margin (SonarPhysics::reflectionLossDb).
 std::optional<Echo> traceRay(const SonarWorld& world, const Position& origin,
                              const Position& direction, double maxRange,
                              const SonarPhysics& physics);

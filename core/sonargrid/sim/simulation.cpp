@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/sim/simulation.h"
 
+#include "sonargrid/sim/physics_parameters.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -179,12 +181,7 @@ RobotBody robotBody(const SonarRing& ring) {
 }
 
 OdometryErrors defaultDrift() {
-  OdometryErrors e;
-  e.leftScale = 0.00025;
-  e.rightScale = -0.00025;
-  e.wheelbaseScale = 0.005;
-  e.wheelNoise = 0.001;
-  return e;
+  return driftErrors(defaultPhysicsParameters());
 }
 
 std::vector<Position> routeWaypoints(RouteKind kind, const SonarWorld& world,
