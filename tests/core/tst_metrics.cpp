@@ -140,7 +140,7 @@ class TstMetrics : public QObject {
   void scoreOfTheRoomDataset();
   void commonObservedCells_data();
   void commonObservedCells();
-  void scoreOnACellMask();
+  void scoreOnACellMaskOfTheWallMap();
   void scoreWarnsWhenNoReferenceEdgeWasObserved();
 };
 
@@ -889,7 +889,7 @@ void TstMetrics::commonObservedCells() {
   QVERIFY_THROWS_EXCEPTION(std::invalid_argument, sg::commonObservedCells({}));
 }
 
-void TstMetrics::scoreOnACellMask() {
+void TstMetrics::scoreOnACellMaskOfTheWallMap() {
   // The map of scoreRestrictsMetrics: a wall along column 0 of a 3 x 5 grid, p 1 on it, p 0.9 at
   // (1, 2), 0 elsewhere, all observed.
   const char* json = R"({"format": "sonargrid-reference", "version": 1, "units": "m", "objects": [
