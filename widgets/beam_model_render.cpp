@@ -83,23 +83,23 @@ QString number(double v) {
   return QString::number(v, 'g', 4);
 }
 
-// The model's own words for its regions (paper 002 §3.1 names Murphy's; the P1–P5 model keeps
-// them; the others are named after what the region writes).
-QString regionLabel(const std::string& model, BeamRegion region, bool beyondReading) {
-  const bool regions = model == "murphy" || model == "parameterized";
-  if (region == BeamRegion::Occupied) {
-    if (regions) return QStringLiteral("Region I");
-    if (model == "hpf") return QStringLiteral("occupied arc");
-    if (model == "himm") return QStringLiteral("I⁺ cell");
-    return QStringLiteral("occupied (λ > 1)");
-  }
-  if (region == BeamRegion::Empty) {
-    if (regions) return QStringLiteral("Region II");
-    if (model == "hpf") return QStringLiteral("empty arc");
-    if (model == "himm") return QStringLiteral("I⁻ cells");
-    return QStringLiteral("free (λ < 1)");
-  }
-  return regions && beyondReading ? QStringLiteral("Region III") : QStringLiteral("no update");
+// `full` when it fits `width` pixels in `fm`, else `brief` (a narrow column in compare mode).
+QString fitting(const QFontMetrics& fm, const QString& full, const QString& brief, double width) {
+  return fm.horizontalAdvance(full) <= width ? full : brief;
+}
+
+// The model's own words for its regions, as its ModelInfo declares them (paper 002 §3.1 names
+// Murphy's I, II and III; the others are named after what the region writes).
+QString regionLabel(const ModelInfo& info, BeamRegion region, bool beyondReading) {
+  const ModelInfo::Regions& r = info.regions;
+  if (region == BeamRegion::Occupied && !r.occupied.empty())
+    return QString::fromStdString(r.occupied);
+  if (region == BeamRegion::Empty && !r.empty.empty()) return QString::fromStdString(r.empty);
+  if (region == BeamRegion::Outside && beyondReading && !r.beyond.empty())
+    return QString::fromStdString(r.beyond);
+  if (region == BeamRegion::Occupied) return QStringLiteral("occupied");
+  if (region == BeamRegion::Empty) return QStringLiteral("free");
+  return QStringLiteral("no update");
 }
 
 QColor regionShade(BeamRegion region) {
@@ -251,8 +251,14 @@ std::vector<AxialSpan> axialSpans(const BeamScene& scene, double xMax) {
     if (spans[i].from != spans[i].to) spans[i].from = mid;
   }
   bool beyond = false;  // past a span that reaches the reading
+  static const ModelInfo unnamed{};
+  const ModelInfo* info = &unnamed;
+  try {
+    info = &sensorModelInfo(scene.settings.model);
+  } catch (const std::exception&) {
+  }
   for (AxialSpan& s : spans) {
-    s.label = regionLabel(scene.settings.model, s.region, beyond);
+    s.label = regionLabel(*info, s.region, beyond);
     if (s.region != BeamRegion::Outside && std::isfinite(scene.range) && s.to >= scene.range) {
       beyond = true;
     }
@@ -266,7 +272,7 @@ BeamLayout beamLayout(QSize size, int columns) {
   const int fp = std::clamp(size.height() / 50, 12, 20);
   const int barWidth = std::max(7 * fp, size.width() / 11);
   const int columnWidth = (size.width() - barWidth) / columns;
-  const int titleHeight = 3 * fp;
+  const int titleHeight = 4 * fp;  // a title and its settings, each on up to two lines
   const int rest = size.height() - titleHeight;
   const int mapHeight = rest * 40 / 100, profileHeight = rest * 26 / 100;
   for (int c = 0; c < columns; ++c) {
@@ -323,7 +329,9 @@ void drawConeMap(QPainter& painter, const BeamScene& scene, const BeamExtent& ex
                      text);
   }
   painter.drawText(QRectF(plot.left(), plot.bottom() + fp * 1.5, plot.width(), fp * 1.4),
-                   Qt::AlignHCenter, QStringLiteral("x [m] along the acoustic axis"));
+                   Qt::AlignHCenter | Qt::TextDontClip,
+                   fitting(fm, QStringLiteral("x [m] along the acoustic axis"),
+                           QStringLiteral("x [m]"), plot.width()));
   painter.save();
   painter.translate(area.left() + fp * 0.9, plot.center().y());
   painter.rotate(-90);
@@ -366,7 +374,9 @@ void drawAxialProfile(QPainter& painter, const BeamScene& scene, const BeamExten
   painter.setFont(fontOf(fp, true));
   const QFontMetrics bold(painter.font());
   // Labels go where the curve is not (low for Region I, whose values are high; high elsewhere),
-  // beside a span too narrow for its name, and never over a label already placed.
+  // centred over their own region (never beside it, over a neighbour), on the first of three lines
+  // where they overlap no label already placed. A label wider than its region gets a tick down
+  // to it.
   std::vector<QRectF> placed;
   for (const AxialSpan& s : spans) {
     double a = px(s.from), b = px(s.to);
@@ -375,21 +385,28 @@ void drawAxialProfile(QPainter& painter, const BeamScene& scene, const BeamExten
   }
   painter.setPen(QColor(40, 40, 40));
   for (const AxialSpan& s : spans) {
-    const double a = px(s.from), b = px(s.to);
+    const double a = std::max<double>(px(s.from), plot.left());
+    const double b = std::min<double>(px(s.to), plot.right() + 1);
+    if (b <= a && s.from != s.to) continue;  // outside the plot
     const double width = bold.horizontalAdvance(s.label) + 6.0;
-    const double left = width < b - a ? (a + b - width) / 2.0 : b + 2.0;
+    const double centre = (a + b) / 2.0;
+    const double left =
+        std::clamp(centre - width / 2.0, double(plot.left()), plot.right() + 1.0 - width);
     const bool low = s.region == BeamRegion::Occupied;
-    for (int line = 0; line < 2; ++line) {
+    for (int line = 0; line < 3; ++line) {
       const double top =
           low ? plot.bottom() - fp * (1.6 + 1.3 * line) : plot.top() + fp * (0.2 + 1.3 * line);
       const QRectF box(left, top, width, fp * 1.3);
       const bool free = std::none_of(placed.begin(), placed.end(),
                                      [&](const QRectF& r) { return r.intersects(box); });
-      if (free && box.right() <= plot.right() + 1) {
-        painter.drawText(box, Qt::AlignCenter, s.label);
-        placed.push_back(box);
-        break;
+      if (!free) continue;
+      painter.drawText(box, Qt::AlignCenter, s.label);
+      if (width > b - a + 2.0) {
+        const double y = low ? box.top() : box.bottom();
+        painter.drawLine(QPointF(centre, y), QPointF(centre, y + (low ? -fp * 0.5 : fp * 0.5)));
       }
+      placed.push_back(box);
+      break;
     }
   }
 
@@ -452,7 +469,9 @@ void drawAxialProfile(QPainter& painter, const BeamScene& scene, const BeamExten
                      text);
   }
   painter.drawText(QRectF(plot.left(), plot.bottom() + fp * 1.6, plot.width(), fp * 1.4),
-                   Qt::AlignHCenter, QStringLiteral("r [m] on the axis (α = 0)"));
+                   Qt::AlignHCenter | Qt::TextDontClip,
+                   fitting(fm, QStringLiteral("r [m] on the axis (α = 0)"),
+                           QStringLiteral("r [m], α = 0"), plot.width()));
   painter.save();
   painter.translate(area.left() + fp * 0.9, plot.center().y());
   painter.rotate(-90);
@@ -653,15 +672,22 @@ QImage renderBeamModel(const std::vector<BeamScene>& scenes, QSize size) {
           QStringLiteral("unknown model '%1'").arg(QString::fromStdString(scene.settings.model));
     }
     painter.setPen(QColor(20, 20, 20));
-    painter.setFont(fontOf(fp, true));
+    // The title and the settings wrap; both shrink together until they fit the title band.
     const QRect inner = title.adjusted(fp / 2, fp / 4, -fp / 2, 0);
-    painter.drawText(
-        inner, Qt::AlignLeft | Qt::AlignTop,
-        QFontMetrics(painter.font()).elidedText(heading, Qt::ElideRight, inner.width()));
-    painter.setFont(fontOf(std::max(11, fp - 3)));
-    painter.drawText(inner.adjusted(0, fp + fp / 3, 0, 0), Qt::AlignLeft | Qt::AlignTop,
-                     QFontMetrics(painter.font())
-                         .elidedText(modelSummary(scene), Qt::ElideRight, inner.width()));
+    const int flags = Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap;
+    const QString summary = modelSummary(scene);
+    int pixels = fp;
+    QRect headRect, summaryRect;
+    for (;; --pixels) {
+      headRect = QFontMetrics(fontOf(pixels, true)).boundingRect(inner, flags, heading);
+      summaryRect = QFontMetrics(fontOf(std::max(9, pixels - 3)))
+                        .boundingRect(inner.adjusted(0, headRect.height(), 0, 0), flags, summary);
+      if (pixels <= 9 || headRect.height() + summaryRect.height() <= inner.height()) break;
+    }
+    painter.setFont(fontOf(pixels, true));
+    painter.drawText(inner, flags, heading);
+    painter.setFont(fontOf(std::max(9, pixels - 3)));
+    painter.drawText(inner.adjusted(0, headRect.height(), 0, 0), flags, summary);
     drawConeMap(painter, scene, extent, layout.map[c]);
     drawAxialProfile(painter, scene, extent, layout.profile[c]);
     drawSurface(painter, scene, extent, layout.surface[c]);

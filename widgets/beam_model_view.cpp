@@ -12,6 +12,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sonargrid/presets.h"
+
 namespace sg::ui {
 
 namespace {
@@ -23,7 +25,7 @@ constexpr double kRangeStep = 0.01;  // m per slider position
 class BeamModelView::Canvas : public QWidget {
  public:
   explicit Canvas(BeamModelView* view) : QWidget(view), view_(view) {
-    setMinimumSize(260, 280);
+    setMinimumSize(230, 280);  // narrow enough that the grid keeps half of a 1280 px window
     setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Expanding);
   }
   void invalidate() {
@@ -62,11 +64,7 @@ BeamModelView::BeamModelView(QWidget* parent) : QWidget(parent) {
 
   compare_ = new QComboBox(this);
   compare_->setObjectName(QStringLiteral("compareChooser"));
-  compare_->addItem(tr("nothing (one model)"), QString());
-  for (const std::string& name : sensorModelNames()) {
-    compare_->addItem(QString::fromStdString(sensorModelInfo(name).title),
-                      QString::fromStdString(name));
-  }
+  rebuildCompareChooser();
   compare_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
   compare_->setMinimumContentsLength(12);
   auto* compareLabel = new QLabel(tr("&Compare with:"), this);
@@ -95,24 +93,8 @@ BeamModelView::BeamModelView(QWidget* parent) : QWidget(parent) {
     setRange(s);
     emit rangeChanged(range_);
   });
-  connect(compare_, &QComboBox::activated, this, [this](int index) {
-    const std::string model = compare_->itemData(index).toString().toStdString();
-    if (model.empty()) {
-      setComparisonSettings(std::nullopt);
-      return;
-    }
-    // The picture depends on the model alone; any rule that fits it will do.
-    MapperSettings other;
-    other.model = model;
-    for (const std::string& rule : updateRuleNames()) {
-      if (compatibility(model, rule).allowed) {
-        other.rule = rule;
-        break;
-      }
-    }
-    other.parameters = defaultParameters(other.model, other.rule);
-    setComparisonSettings(other);
-  });
+  connect(compare_, &QComboBox::activated, this,
+          [this](int index) { compareWith(compare_->itemData(index).toString()); });
   setMaxRange(maxRange_);
 }
 
@@ -143,10 +125,114 @@ void BeamModelView::setMaxRange(double metres) {
 
 void BeamModelView::setComparisonSettings(const std::optional<MapperSettings>& settings) {
   comparison_ = settings;
+  comparisonKey_.clear();
+  // The chooser names the entry these settings are, if any (else the model at its defaults).
+  int index = 0;
+  if (settings) {
+    for (int i = 1; i < compare_->count() && index == 0; ++i) {
+      const QString key = compare_->itemData(i).toString();
+      if (key == QLatin1String("current")) continue;
+      const std::optional<MapperSettings> s = settingsFor(key);
+      if (s && s->model == settings->model && s->parameters == settings->parameters) index = i;
+    }
+    if (index == 0)
+      index = std::max(0, compare_->findData(QStringLiteral("model:") +
+                                             QString::fromStdString(settings->model)));
+  }
   const QSignalBlocker block(compare_);
-  compare_->setCurrentIndex(
-      settings ? std::max(0, compare_->findData(QString::fromStdString(settings->model))) : 0);
+  compare_->setCurrentIndex(index);
   invalidate();
+}
+
+void BeamModelView::setPinnedConfigurations(std::vector<NamedSettings> pinned) {
+  pinned_ = std::move(pinned);
+  rebuildCompareChooser();
+  // A comparison with a pinned row follows the rows (an unpinned one ends it).
+  if (comparisonKey_.startsWith(QLatin1String("pinned:"))) {
+    comparison_ = settingsFor(comparisonKey_);
+    if (!comparison_) comparisonKey_.clear();
+    invalidate();
+  }
+}
+
+void BeamModelView::rebuildCompareChooser() {
+  const QSignalBlocker block(compare_);
+  const QString current = compare_->currentData().toString();
+  compare_->clear();
+  compare_->addItem(tr("nothing (one model)"), QString());
+  for (const std::string& name : sensorModelNames()) {
+    compare_->addItem(QString::fromStdString(sensorModelInfo(name).title),
+                      QStringLiteral("model:") + QString::fromStdString(name));
+    compare_->setItemData(compare_->count() - 1, tr("This model at its default parameters"),
+                          Qt::ToolTipRole);
+  }
+  compare_->insertSeparator(compare_->count());
+  compare_->addItem(tr("These settings, frozen"), QStringLiteral("current"));
+  compare_->setItemData(compare_->count() - 1,
+                        tr("Keeps the settings shown now beside the ones you change next "
+                           "(move a slider to see both)"),
+                        Qt::ToolTipRole);
+  compare_->insertSeparator(compare_->count());
+  for (const Preset& p : paperPresets())
+    compare_->addItem(tr("Preset: %1").arg(QString::fromStdString(p.title)),
+                      QStringLiteral("preset:") + QString::fromStdString(p.name));
+  if (!pinned_.empty()) compare_->insertSeparator(compare_->count());
+  for (std::size_t i = 0; i < pinned_.size(); ++i)
+    compare_->addItem(tr("Pinned: %1").arg(pinned_[i].label), QStringLiteral("pinned:%1").arg(i));
+  const int keep = compare_->findData(comparisonKey_.isEmpty() ? current : comparisonKey_);
+  compare_->setCurrentIndex(std::max(0, keep));
+}
+
+std::optional<MapperSettings> BeamModelView::settingsFor(const QString& key) const {
+  if (key.startsWith(QLatin1String("model:"))) {
+    // The picture depends on the model alone; its paper's rule (or any that fits) will do.
+    MapperSettings other;
+    other.model = key.mid(6).toStdString();
+    try {
+      other.rule = sensorModelInfo(other.model).preferredRule;
+    } catch (const std::exception&) {
+      return std::nullopt;
+    }
+    if (other.rule.empty() || !compatibility(other.model, other.rule).allowed)
+      for (const std::string& rule : updateRuleNames())
+        if (compatibility(other.model, rule).allowed) {
+          other.rule = rule;
+          break;
+        }
+    other.parameters = defaultParameters(other.model, other.rule);
+    return other;
+  }
+  if (key.startsWith(QLatin1String("preset:"))) {
+    const Preset* p = findPreset(key.mid(7).toStdString());
+    if (!p) return std::nullopt;
+    return applyPreset(*p);
+  }
+  if (key.startsWith(QLatin1String("pinned:"))) {
+    bool ok = false;
+    const std::size_t i = key.mid(7).toULongLong(&ok);
+    if (!ok || i >= pinned_.size()) return std::nullopt;
+    return pinned_[i].settings;
+  }
+  if (key == QLatin1String("current")) return settings_;
+  return std::nullopt;
+}
+
+bool BeamModelView::compareWith(const QString& key) {
+  const int index = compare_->findData(key);
+  if (index < 0) return false;
+  {
+    const QSignalBlocker block(compare_);
+    compare_->setCurrentIndex(index);
+  }
+  if (key.isEmpty()) {
+    comparison_.reset();
+    comparisonKey_.clear();
+  } else {
+    comparison_ = settingsFor(key);
+    comparisonKey_ = key == QLatin1String("current") ? QString() : key;
+  }
+  invalidate();
+  return true;
 }
 
 std::vector<BeamScene> BeamModelView::scenes() const {

@@ -8,6 +8,7 @@
 #include <QImage>
 #include <QWidget>
 #include <optional>
+#include <vector>
 
 #include "beam_model_render.h"
 #include "sonargrid/mapper.h"
@@ -32,6 +33,18 @@ class BeamModelView : public QWidget {
   void setMaxRange(double metres);
   // A second model drawn beside the first to compare; nullopt for one model.
   void setComparisonSettings(const std::optional<sg::MapperSettings>& settings);
+
+  // A configuration the "Compare with" chooser offers besides the models at their defaults and the
+  // paper presets: the document's pinned rows.
+  struct NamedSettings {
+    QString label;
+    sg::MapperSettings settings;
+  };
+  void setPinnedConfigurations(std::vector<NamedSettings> pinned);
+  // Compares with the chooser's entry `key`: "model:NAME" (at its defaults), "preset:NAME",
+  // "pinned:INDEX", "current" (the settings shown now, frozen) or "" (one model). False when the
+  // chooser has no such entry.
+  bool compareWith(const QString& key);
   const std::optional<sg::MapperSettings>& comparisonSettings() const { return comparison_; }
 
   // The scenes drawn (one or two) and the picture at `size`, as the widget paints it.
@@ -48,9 +61,13 @@ class BeamModelView : public QWidget {
   class Canvas;
   void showRange();
   void invalidate();
+  void rebuildCompareChooser();
+  std::optional<sg::MapperSettings> settingsFor(const QString& key) const;
 
   sg::MapperSettings settings_;
   std::optional<sg::MapperSettings> comparison_;
+  QString comparisonKey_;  // the chooser entry the comparison came from ("" when set directly)
+  std::vector<NamedSettings> pinned_;
   double range_ = 2.0;
   double maxRange_ = 5.0;
   QSlider* rangeSlider_ = nullptr;

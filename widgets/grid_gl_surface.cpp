@@ -37,7 +37,7 @@ void main() {
     return;
   }
   float level = floor(texture2D(levels, (cell + 0.5) / gridSize).r * 255.0 + 0.5);
-  gl_FragColor = texture2D(palette, vec2((min(level, 15.0) + 0.5) / 16.0, 0.5));
+  gl_FragColor = texture2D(palette, vec2((min(level, 16.0) + 0.5) / 32.0, 0.5));
 }
 )";
 
@@ -90,9 +90,12 @@ void GridGlSurface::initializeGL() {
 }
 
 void GridGlSurface::uploadPalette() {
-  std::uint8_t rgba[kLevels * 4];
-  for (int k = 0; k < kLevels; ++k) {
-    const Rgb& c = view_->palette_[static_cast<std::size_t>(k)];
+  // 32 entries (a power of two): the 16 levels, then the unknown colour (index 16, a never-observed
+  // cell) repeated.
+  constexpr int kEntries = 32;
+  std::uint8_t rgba[kEntries * 4];
+  for (int k = 0; k < kEntries; ++k) {
+    const Rgb& c = k < kLevels ? view_->palette_[static_cast<std::size_t>(k)] : kUnknownColour;
     rgba[4 * k] = c.r;
     rgba[4 * k + 1] = c.g;
     rgba[4 * k + 2] = c.b;
@@ -100,7 +103,7 @@ void GridGlSurface::uploadPalette() {
   }
   glBindTexture(GL_TEXTURE_2D, paletteTexture_);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, kLevels, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, kEntries, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
   paletteDirty_ = false;
 }
 
@@ -110,15 +113,19 @@ void GridGlSurface::uploadLevels() {
   uploadFirst_ = uploadCount_ = 0;
   if (!map) return;
   const GridSpec& g = map->spec;
+  // The colour index of each cell: its level, or 16 (unknown) where no reading wrote it.
+  std::vector<std::uint8_t> shown = map->level;
+  if (map->observed.size() == shown.size())
+    for (std::size_t i = 0; i < shown.size(); ++i)
+      if (map->observed[i] == 0) shown[i] = static_cast<std::uint8_t>(kLevels);
   glBindTexture(GL_TEXTURE_2D, levelTexture_);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  if (g.width != textureWidth_ || g.height != textureHeight_ ||
-      uploaded_.size() != map->level.size()) {
+  if (g.width != textureWidth_ || g.height != textureHeight_ || uploaded_.size() != shown.size()) {
     glTexImage2D(GL_TEXTURE_2D, 0, GL_LUMINANCE, g.width, g.height, 0, GL_LUMINANCE,
-                 GL_UNSIGNED_BYTE, map->level.data());
+                 GL_UNSIGNED_BYTE, shown.data());
     textureWidth_ = g.width;
     textureHeight_ = g.height;
-    uploaded_ = map->level;
+    uploaded_ = shown;
     uploadFirst_ = 0;
     uploadCount_ = g.height;
     return;
@@ -128,8 +135,8 @@ void GridGlSurface::uploadLevels() {
   int first = -1, last = -1;
   for (int row = 0; row < g.height; ++row) {
     const auto begin = static_cast<std::size_t>(row) * w;
-    if (!std::equal(map->level.begin() + static_cast<std::ptrdiff_t>(begin),
-                    map->level.begin() + static_cast<std::ptrdiff_t>(begin + w),
+    if (!std::equal(shown.begin() + static_cast<std::ptrdiff_t>(begin),
+                    shown.begin() + static_cast<std::ptrdiff_t>(begin + w),
                     uploaded_.begin() + static_cast<std::ptrdiff_t>(begin))) {
       if (first < 0) first = row;
       last = row;
@@ -138,11 +145,10 @@ void GridGlSurface::uploadLevels() {
   if (first < 0) return;
   const auto offset = static_cast<std::size_t>(first) * w;
   glTexSubImage2D(GL_TEXTURE_2D, 0, 0, first, g.width, last - first + 1, GL_LUMINANCE,
-                  GL_UNSIGNED_BYTE, map->level.data() + offset);
-  std::copy(
-      map->level.begin() + static_cast<std::ptrdiff_t>(offset),
-      map->level.begin() + static_cast<std::ptrdiff_t>((static_cast<std::size_t>(last) + 1) * w),
-      uploaded_.begin() + static_cast<std::ptrdiff_t>(offset));
+                  GL_UNSIGNED_BYTE, shown.data() + offset);
+  std::copy(shown.begin() + static_cast<std::ptrdiff_t>(offset),
+            shown.begin() + static_cast<std::ptrdiff_t>((static_cast<std::size_t>(last) + 1) * w),
+            uploaded_.begin() + static_cast<std::ptrdiff_t>(offset));
   uploadFirst_ = first;
   uploadCount_ = last - first + 1;
 }

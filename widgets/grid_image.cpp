@@ -5,6 +5,9 @@
 #include <QPainterPath>
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "dmin_overlay.h"
 
 namespace sg::ui {
 
@@ -26,6 +29,39 @@ ViewTransform ViewTransform::fitting(const GridSpec& grid, const QSize& size, in
   if (grid.width > 0 && grid.height > 0)
     t.pixelsPerMetre = std::min(w / grid.widthMetres(), h / grid.heightMetres());
   return t;
+}
+
+ViewTransform ViewTransform::fittingBox(const Position& low, const Position& high,
+                                        const QSize& size, int marginPx) {
+  ViewTransform t;
+  t.centre = (low + high) / 2.0;
+  const double w = std::max(1, size.width() - 2 * marginPx);
+  const double h = std::max(1, size.height() - 2 * marginPx);
+  const double bw = high.x() - low.x(), bh = high.y() - low.y();
+  if (bw > 0.0 && bh > 0.0) t.pixelsPerMetre = std::min(w / bw, h / bh);
+  return t;
+}
+
+FocusArea focusArea(const Dataset* data, PoseSource pose, const ReferenceMap* reference,
+                    double marginMetres) {
+  FocusArea a;
+  a.low =
+      Position(std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity());
+  a.high = -a.low;
+  auto take = [&a](const Position& p, double margin) {
+    a.low = a.low.cwiseMin(p - Position(margin, margin));
+    a.high = a.high.cwiseMax(p + Position(margin, margin));
+  };
+  if (data) {
+    const PoseSource source =
+        pose == PoseSource::Truth && !data->hasTruth() ? PoseSource::Odometry : pose;
+    for (const Scan& scan : data->scans) take(data->pose(scan, source).position, marginMetres);
+  }
+  if (reference)
+    for (const auto& line : referencePolylines(*reference))
+      for (const Position& p : line) take(p, 0.0);
+  if (a.empty()) return FocusArea{};
+  return a;
 }
 
 std::vector<std::vector<Position>> referencePolylines(const ReferenceMap& reference) {
@@ -69,6 +105,21 @@ QColor backgroundColour() {
   return QColor(58, 62, 66);
 }
 
+QColor unknownColour() {
+  return QColor(kUnknownColour.r, kUnknownColour.g, kUnknownColour.b);
+}
+
+namespace {
+
+// The colour index of cell `i`: its level, or kLevels (unknown) when no reading wrote it. A map
+// without an observed layer of the right size counts every cell as observed.
+inline int colourIndex(const OccupancyMap& map, std::size_t i) {
+  if (map.observed.size() == map.level.size() && map.observed[i] == 0) return kLevels;
+  return std::min<int>(map.level[i], kLevels - 1);
+}
+
+}  // namespace
+
 QImage renderGridCells(const OccupancyMap* map, const LevelPalette& palette,
                        const ViewTransform& view, const QSize& size) {
   QImage image(size, QImage::Format_RGB32);
@@ -77,11 +128,12 @@ QImage renderGridCells(const OccupancyMap* map, const LevelPalette& palette,
   if (!map || map->spec.width <= 0 || map->spec.height <= 0 || size.isEmpty()) return image;
   if (map->level.size() != map->spec.cellCount()) return image;
   const GridSpec& g = map->spec;
-  QRgb colours[kLevels];
+  QRgb colours[kLevels + 1];
   for (int k = 0; k < kLevels; ++k) {
     const Rgb& c = palette[static_cast<std::size_t>(k)];
     colours[k] = qRgb(c.r, c.g, c.b);
   }
+  colours[kLevels] = unknownColour().rgb();
   // The cell column of every pixel column, computed once (-1 outside the grid).
   std::vector<int> columnCell(static_cast<std::size_t>(size.width()));
   for (int px = 0; px < size.width(); ++px) {
@@ -94,10 +146,10 @@ QImage renderGridCells(const OccupancyMap* map, const LevelPalette& palette,
     const int iy = GridSpec::cellCoordinate((y - g.origin.y()) / g.cellSize);
     if (iy < 0 || iy >= g.height) continue;
     auto* line = reinterpret_cast<QRgb*>(image.scanLine(py));
-    const std::uint8_t* row = map->level.data() + static_cast<std::size_t>(iy) * g.width;
+    const std::size_t row = static_cast<std::size_t>(iy) * static_cast<std::size_t>(g.width);
     for (int px = 0; px < size.width(); ++px) {
       const int ix = columnCell[static_cast<std::size_t>(px)];
-      if (ix >= 0) line[px] = colours[std::min<int>(row[ix], kLevels - 1)];
+      if (ix >= 0) line[px] = colours[colourIndex(*map, row + static_cast<std::size_t>(ix))];
     }
   }
   return image;
@@ -110,8 +162,11 @@ constexpr int kLegendPadding = 6;
 constexpr int kSwatch = 16;
 constexpr int kLegendLabel = 14;
 
+constexpr int kUnknownGap = 8;              // between level 15 and the unknown swatch
+constexpr int kUnknownBlock = 3 * kSwatch;  // room for its label
+
 QRect legendBox(const QSize& size) {
-  const int w = 2 * kLegendPadding + kLevels * kSwatch;
+  const int w = 2 * kLegendPadding + kLevels * kSwatch + kUnknownGap + kUnknownBlock;
   const int h = 2 * kLegendPadding + kSwatch + kLegendLabel;
   return {kLegendMargin, size.height() - kLegendMargin - h, w, h};
 }
@@ -132,6 +187,7 @@ void paintLegend(QPainter& p, const LevelPalette& palette, const QSize& size) {
     const Rgb& c = palette[static_cast<std::size_t>(k)];
     p.fillRect(legendSwatch(k, size), QColor(c.r, c.g, c.b));
   }
+  p.fillRect(legendSwatch(kLevels, size), unknownColour());
   QFont font = p.font();
   font.setPixelSize(10);
   p.setFont(font);
@@ -146,6 +202,9 @@ void paintLegend(QPainter& p, const LevelPalette& palette, const QSize& size) {
              Qt::AlignCenter, QStringLiteral("free"));
   p.drawText(QRect(legendSwatch(10, size).left(), labelTop, 4 * kSwatch, kLegendLabel),
              Qt::AlignCenter, QStringLiteral("occupied"));
+  const QRect unknown = legendSwatch(kLevels, size);
+  p.drawText(QRect(unknown.left() - kSwatch / 2, labelTop, kUnknownBlock, kLegendLabel),
+             Qt::AlignCenter, QStringLiteral("unknown"));
 }
 
 QPolygonF polyline(const std::vector<Position>& points, const ViewTransform& view,
@@ -182,7 +241,8 @@ QPainterPath conePath(const BeamCone& cone, const ViewTransform& view, const QSi
 
 QRect legendSwatch(int level, const QSize& size) {
   const QRect box = legendBox(size);
-  return {box.left() + kLegendPadding + level * kSwatch, box.top() + kLegendPadding, kSwatch,
+  const int gap = level >= kLevels ? kUnknownGap + kSwatch / 2 : 0;
+  return {box.left() + kLegendPadding + level * kSwatch + gap, box.top() + kLegendPadding, kSwatch,
           kSwatch};
 }
 
@@ -191,6 +251,7 @@ void paintOverlays(QPainter& p, const GridScene& scene, const LevelPalette& pale
   p.save();
   p.setRenderHint(QPainter::Antialiasing, true);
   p.setBrush(Qt::NoBrush);
+  if (overlays.testFlag(Overlay::Dmin)) paintDminTint(p, scene, view, size);
   if (overlays.testFlag(Overlay::Reference)) {
     p.setPen(QPen(QColor(0, 190, 90), 2.0, Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
     for (const auto& line : scene.referenceLines) p.drawPolyline(polyline(line, view, size));
@@ -269,8 +330,10 @@ void paintGridVector(QPainter& painter, const GridScene& scene, const LevelPalet
     for (int iy = 0; iy < g.height; ++iy) {
       auto* line = reinterpret_cast<QRgb*>(cells.scanLine(g.height - 1 - iy));
       for (int ix = 0; ix < g.width; ++ix) {
-        const Rgb& c = palette[std::min<std::size_t>(map->level[g.linear({ix, iy})], kLevels - 1)];
-        line[ix] = qRgb(c.r, c.g, c.b);
+        const int k = colourIndex(*map, g.linear({ix, iy}));
+        line[ix] = k == kLevels ? unknownColour().rgb()
+                                : qRgb(palette[std::size_t(k)].r, palette[std::size_t(k)].g,
+                                       palette[std::size_t(k)].b);
       }
     }
     const QPointF topLeft = view.toPixel(g.origin + Position(0.0, g.heightMetres()), size);
@@ -298,18 +361,35 @@ CellReadout readCell(const OccupancyMap& map, const Position& world) {
   return r;
 }
 
+namespace {
+
+// A probability with the precision it needs: three decimals in [0.001, 0.999]; beyond, the
+// distance from 0 or 1 in two significant digits ("2.3e-86", "1 − 4.1e-07"), never "0.000".
+QString probabilityText(double p) {
+  if (!std::isfinite(p)) return QStringLiteral("—");
+  if (p <= 0.0) return QStringLiteral("0");
+  if (p >= 1.0) return QStringLiteral("1");
+  if (p < 0.001) return QString::number(p, 'g', 2);
+  if (p > 0.999) return QStringLiteral("1 − %1").arg(QString::number(1.0 - p, 'g', 2));
+  return QString::number(p, 'f', 3);
+}
+
+}  // namespace
+
 QString describeReadout(const CellReadout& r, const QString& nativeName) {
   QString text =
       QStringLiteral("x %1 m, y %2 m").arg(r.world.x(), 0, 'f', 3).arg(r.world.y(), 0, 'f', 3);
   if (!r.inside) return text + QStringLiteral("  (off the grid)");
-  text += QStringLiteral("  |  cell (%1, %2)  |  CV %3  |  p(occ) %4  |  %5 %6")
-              .arg(r.cell.x())
-              .arg(r.cell.y())
-              .arg(r.level)
-              .arg(r.probability, 0, 'f', 3)
-              .arg(nativeName.isEmpty() ? QStringLiteral("native") : nativeName)
-              .arg(r.native, 0, 'g', 4);
-  if (!r.observed) text += QStringLiteral("  (never observed)");
+  text += QStringLiteral("  |  cell (%1, %2)").arg(r.cell.x()).arg(r.cell.y());
+  if (!r.observed) return text + QStringLiteral("  |  unknown (never observed)");
+  text +=
+      QStringLiteral("  |  CV %1  |  p(occ) %2").arg(r.level).arg(probabilityText(r.probability));
+  // The rule's own value, unless it is that same probability again (the Bayes rules).
+  const bool same = std::abs(r.native - r.probability) <= 1e-12 * std::max(1.0, std::abs(r.native));
+  if (!same)
+    text += QStringLiteral("  |  %1 %2")
+                .arg(nativeName.isEmpty() ? QStringLiteral("native") : nativeName)
+                .arg(r.native, 0, 'g', 4);
   return text;
 }
 

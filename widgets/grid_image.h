@@ -33,6 +33,9 @@ struct ViewTransform {
 
   // The transform showing the whole grid in `size` with `marginPx` pixels to spare on each side.
   static ViewTransform fitting(const GridSpec& grid, const QSize& size, int marginPx = 12);
+  // The transform showing the box [low, high] (world metres) in `size`, centred.
+  static ViewTransform fittingBox(const Position& low, const Position& high, const QSize& size,
+                                  int marginPx = 12);
   bool operator==(const ViewTransform&) const = default;
 };
 
@@ -43,10 +46,11 @@ enum class Overlay {
   Beams = 0x08,      // the current scan's beams, as cones
   Ring = 0x10,       // the sonar ring at the current pose
   Legend = 0x20,     // the 16 levels, bottom left
+  Dmin = 0x40,       // filled cells coloured by their distance to the reference (dmin_overlay.h)
 };
 Q_DECLARE_FLAGS(Overlays, Overlay)
 Q_DECLARE_OPERATORS_FOR_FLAGS(Overlays)
-inline constexpr Overlays kAllOverlays{0x3f};
+inline constexpr Overlays kAllOverlays{0x3f};  // the D_min tint is off until asked for
 
 // One beam of the current scan: a cone from the transducer, `range` long (the maximum range for a
 // reading without echo).
@@ -70,6 +74,10 @@ struct GridScene {
   std::vector<BeamCone> beams;
   // The sonar whose beam is drawn highlighted (the one the beam-model view shows), if any.
   std::optional<std::size_t> highlightedSonar;
+  // One pixel per cell (row 0 the grid's top row) drawn over the cells of a map on `dminSpec`
+  // (Overlay::Dmin; dmin_overlay.h); not drawn over a map on another grid.
+  std::shared_ptr<const QImage> dminTint;
+  GridSpec dminSpec;
 };
 
 // The reference map as polylines in metres (a raster reference contributes none).
@@ -80,9 +88,23 @@ void placeRobot(GridScene& scene, const Dataset& data, PoseSource pose, std::siz
 
 // Colour of the area outside the grid; none of the palette's levels is this close to it.
 QColor backgroundColour();
+// Colour of a never-observed cell (sg::kUnknownColour), in every rule: never that of a level.
+QColor unknownColour();
+
+// What the first view shows: where the robot went (every pose of the log, with `marginMetres`
+// around it for the walls it saw) and the reference map, not the farthest phantom echo that
+// stretched the grid. Empty (`low` > `high`) when there is neither.
+struct FocusArea {
+  Position low{1.0, 1.0};
+  Position high{0.0, 0.0};
+  bool empty() const { return !(low.x() <= high.x() && low.y() <= high.y()); }
+};
+FocusArea focusArea(const Dataset* data, PoseSource pose, const ReferenceMap* reference,
+                    double marginMetres = 1.5);
 
 // The cells alone: each pixel takes the level of the cell under its centre (nearest neighbour),
-// coloured by `palette`; pixels outside the grid (or without a map) get backgroundColour().
+// coloured by `palette`, or unknownColour() when no reading ever wrote the cell (whatever its
+// level); pixels outside the grid (or without a map) get backgroundColour().
 QImage renderGridCells(const OccupancyMap* map, const LevelPalette& palette,
                        const ViewTransform& view, const QSize& size);
 
@@ -100,7 +122,8 @@ QImage renderGridImage(const GridScene& scene, const LevelPalette& palette, Over
 void paintGridVector(QPainter& painter, const GridScene& scene, const LevelPalette& palette,
                      Overlays overlays, const ViewTransform& view, const QSize& size);
 
-// Where the legend's swatch of `level` lies in a picture of `size` (tests read it back).
+// Where the legend's swatch of `level` lies in a picture of `size` (tests read it back); level
+// kLevels is the "unknown" swatch, set apart after level 15.
 QRect legendSwatch(int level, const QSize& size);
 
 // What the view reads out under the pointer.

@@ -139,10 +139,12 @@ void GridView::setMap(std::shared_ptr<const OccupancyMap> map) {
   const bool sameGrid = scene_.map && map &&
                         (sameGround(scene_.map->spec, map->spec) ||
                          (!followFit_ && grownFrom(scene_.map->spec, map->spec)));
+  const bool tintShown = scene_.dminTint && overlays_.testFlag(Overlay::Dmin);
   scene_.map = std::move(map);
+  if (tintShown) refresh(false);  // the tint is drawn over a map on its own grid only
   if (!sameGrid && scene_.map) {
     followFit_ = true;
-    view_ = ViewTransform::fitting(scene_.map->spec, size());
+    view_ = fittedView();
     refresh(false);  // the overlays move with the view
     emit viewChanged();
   }
@@ -166,6 +168,12 @@ void GridView::setHighlightedSonar(std::optional<std::size_t> sonar) {
   if (scene_.highlightedSonar == sonar) return;
   scene_.highlightedSonar = sonar;
   refresh(false);
+}
+
+void GridView::setDminTint(std::shared_ptr<const QImage> tint, const GridSpec& spec) {
+  scene_.dminTint = std::move(tint);
+  scene_.dminSpec = spec;
+  if (overlays_.testFlag(Overlay::Dmin)) refresh(false);
 }
 
 void GridView::setLevelPalette(const LevelPalette& palette) {
@@ -192,9 +200,30 @@ void GridView::setView(const ViewTransform& view) {
   emit viewChanged();
 }
 
+ViewTransform GridView::fittedView() const {
+  if (!scene_.map) return view_;
+  const GridSpec& g = scene_.map->spec;
+  if (focus_.empty()) return ViewTransform::fitting(g, size());
+  // The focus within the grid: a phantom echo may stretch the grid, never the first view.
+  const Position gridHigh = g.origin + Position(g.widthMetres(), g.heightMetres());
+  const Position low = focus_.low.cwiseMax(g.origin);
+  const Position high = focus_.high.cwiseMin(gridHigh);
+  if (!(low.x() < high.x() && low.y() < high.y())) return ViewTransform::fitting(g, size());
+  return ViewTransform::fittingBox(low, high, size());
+}
+
+void GridView::setFocusArea(const FocusArea& area) {
+  focus_ = area;
+  if (followFit_ && scene_.map) {
+    view_ = fittedView();
+    refresh(false);
+    emit viewChanged();
+  }
+}
+
 void GridView::fitToMap() {
   if (!scene_.map) return;
-  view_ = ViewTransform::fitting(scene_.map->spec, size());
+  view_ = fittedView();
   followFit_ = true;
   refresh(false);
   emit viewChanged();
@@ -256,7 +285,7 @@ QImage GridView::grabSurface() {
 void GridView::resizeEvent(QResizeEvent* event) {
   QWidget::resizeEvent(event);
   if (followFit_ && scene_.map) {
-    view_ = ViewTransform::fitting(scene_.map->spec, size());
+    view_ = fittedView();
     emit viewChanged();
   }
   refresh(false);

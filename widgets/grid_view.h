@@ -40,6 +40,9 @@ class GridView : public QWidget {
   void setRobotAt(const Dataset* dataset, PoseSource pose, std::size_t scan);
   // Draws this sonar's beam of the current scan highlighted (nullopt: none).
   void setHighlightedSonar(std::optional<std::size_t> sonar);
+  // The D_min tint of the map on `spec` (dmin_overlay.h), drawn while Overlay::Dmin is on and the
+  // shown map is on the same grid; null: none.
+  void setDminTint(std::shared_ptr<const QImage> tint, const GridSpec& spec);
   const GridScene& scene() const { return scene_; }
 
   void setLevelPalette(const LevelPalette& palette);
@@ -52,7 +55,13 @@ class GridView : public QWidget {
 
   const ViewTransform& view() const { return view_; }
   void setView(const ViewTransform& view);
+  // Fits the view to the focus area (where the robot went and the reference) within the grid, or
+  // to the whole grid when there is none.
   void fitToMap();
+  // The area the fitted view shows (focusArea() in grid_image.h); an empty one fits the grid.
+  // Refits a view that still follows the fit.
+  void setFocusArea(const FocusArea& area);
+  ViewTransform fittedView() const;
   // Zooms by `factor` keeping the world point under `pixel` where it is.
   void zoomAt(double factor, const QPointF& pixel);
   void panBy(const QPointF& pixels);
@@ -106,6 +115,7 @@ class GridView : public QWidget {
   Overlays overlays_ = kAllOverlays;
   ViewTransform view_;
   bool followFit_ = true;  // refit on resize until the user pans or zooms
+  FocusArea focus_;
   QString nativeName_;
   QPointF dragFrom_;
   bool dragging_ = false;

@@ -9,13 +9,17 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QPushButton>
+#include <QRegularExpression>
 #include <QScrollArea>
+#include <QScrollBar>
 #include <QSignalBlocker>
 #include <QSlider>
 #include <QStandardItemModel>
 #include <QVBoxLayout>
+#include <QValidator>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "sonargrid/presets.h"
 
@@ -51,7 +55,16 @@ QString unitSuffix(const std::string& unit) {
   return QStringLiteral(" ") + qs(unit);
 }
 
+// The row's label: the symbol and unit ("k [1/m]"), short so that the slider keeps its width; the
+// long name is in the tooltip and the accessible name.
 QString labelText(const ParameterSpec& spec) {
+  QString text = (spec.symbol.empty() || spec.symbol == "—") ? qs(spec.name) : qs(spec.symbol);
+  if (!spec.unit.empty()) text += QStringLiteral(" [%1]").arg(qs(spec.unit));
+  return text;
+}
+
+// The symbol with the long name: "k (attenuation_slope) [1/m]".
+QString fullName(const ParameterSpec& spec) {
   QString text = (spec.symbol.empty() || spec.symbol == "—" || spec.symbol == spec.name)
                      ? qs(spec.name)
                      : QStringLiteral("%1  (%2)").arg(qs(spec.symbol), qs(spec.name));
@@ -59,14 +72,45 @@ QString labelText(const ParameterSpec& spec) {
   return text;
 }
 
+// A spin box that says why a typed number is refused ("1e9" for a value of 1 … 15) instead of
+// silently keeping part of it.
+class ParameterSpinBox : public QDoubleSpinBox {
+ public:
+  using QDoubleSpinBox::QDoubleSpinBox;
+  std::function<void(const QString&)> outOfRange;
+
+  QValidator::State validate(QString& text, int& pos) const override {
+    const QValidator::State state = QDoubleSpinBox::validate(text, pos);
+    if (state == QValidator::Acceptable) return state;
+    QString number = text;
+    if (!suffix().isEmpty() && number.endsWith(suffix())) number.chop(suffix().size());
+    number = number.trimmed();
+    bool ok = false;
+    double v = locale().toDouble(number, &ok);
+    if (!ok) v = number.toDouble(&ok);  // "1e9" in any locale
+    if (ok && std::isfinite(v) && (v < minimum() || v > maximum())) {
+      if (outOfRange) outOfRange(number);
+      return QValidator::Intermediate;  // kept in the box until corrected; never committed
+    }
+    // A number being typed in scientific notation ("1e", "1e9"): let it be finished, so that the
+    // user sees what was refused rather than a box that swallowed the "e".
+    static const QRegularExpression partial(
+        QStringLiteral("^[+-]?[0-9]*[.,]?[0-9]*[eE][+-]?[0-9]*$"));
+    if (partial.match(number).hasMatch()) return QValidator::Intermediate;
+    return state;
+  }
+};
+
 QString toolTipOf(const ParameterSpec& spec) {
   return QStringLiteral(
-             "<p>%1</p><p><b>Source:</b> %2</p><p><b>Range:</b> %3 … %4%5, default %6</p>")
+             "<p><b>%7</b></p><p>%1</p><p><b>Source:</b> %2</p><p><b>Range:</b> %3 … %4%5, "
+             "default %6</p>")
       .arg(qs(spec.description).toHtmlEscaped(), qs(spec.source).toHtmlEscaped())
       .arg(spec.min)
       .arg(spec.max)
       .arg(unitSuffix(spec.unit).toHtmlEscaped())
-      .arg(spec.defaultValue);
+      .arg(spec.defaultValue)
+      .arg(fullName(spec).toHtmlEscaped());
 }
 
 QString presetToolTip(const Preset& p) {
@@ -141,11 +185,11 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   rowsLayout_ = new QVBoxLayout(rowsHost_);
   rowsLayout_->setContentsMargins(0, 0, 0, 0);
   rowsLayout_->addStretch(1);  // the rows stay at the top; the groups go before this
-  auto* scroll = new QScrollArea(this);
-  scroll->setWidgetResizable(true);
-  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
-  scroll->setFrameShape(QFrame::NoFrame);
-  scroll->setWidget(rowsHost_);
+  scroll_ = new QScrollArea(this);
+  scroll_->setWidgetResizable(true);
+  scroll_->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  scroll_->setFrameShape(QFrame::NoFrame);
+  scroll_->setWidget(rowsHost_);
 
   reset_ = new QPushButton(tr("Reset to &defaults"), this);
   reset_->setObjectName(QStringLiteral("resetToDefaults"));
@@ -161,7 +205,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   auto* layout = new QVBoxLayout(this);
   layout->addLayout(choosers);
   layout->addWidget(status_);
-  layout->addWidget(scroll, 1);
+  layout->addWidget(scroll_, 1);
   layout->addLayout(bottom);
 
   connect(model_, &QComboBox::currentIndexChanged, this, &ParameterPanel::chooseModel);
@@ -199,6 +243,15 @@ void ParameterPanel::setSettings(const MapperSettings& settings) {
     return;
   }
   const bool rebuild = next.model != settings_.model || next.rule != settings_.rule;
+  const bool same = !rebuild && next.parameters == settings_.parameters;
+  // A new model with its paper's rule (the Mapping menu, undo, a project): say that the rule
+  // changed too. Settings the panel already shows (its own change coming back) keep the note.
+  // (Not the first settings the panel is given: its own defaults were never the user's.)
+  const bool given = property("settingsGiven").toBool();
+  const QString note = given && next.model != settings_.model && next.rule != settings_.rule
+                           ? ruleChangeNote(settings_.rule, next.model, next.rule)
+                           : QString();
+  setProperty("settingsGiven", true);
   settings_ = next;
   updating_ = true;
   model_->setCurrentIndex(model_->findData(qs(settings_.model)));
@@ -221,7 +274,27 @@ void ParameterPanel::setSettings(const MapperSettings& settings) {
     rebuildRows();
   else
     showValues();
-  showStatus({});
+  if (!same) showStatus(note);
+}
+
+QString ParameterPanel::ruleChangeNote(const std::string& fromRule, const std::string& model,
+                                       const std::string& toRule) const {
+  const Compatibility c = compatibility(model, fromRule);
+  const QString why =
+      !c.allowed ? qs(c.reason)
+      : toRule == sensorModelInfo(model).preferredRule
+          ? tr("%1 is the rule its paper pairs with %2 (%3); choose another "
+               "rule below to override it")
+                .arg(qs(updateRuleInfo(toRule).title), qs(sensorModelInfo(model).title),
+                     qs(sensorModelInfo(model).source))
+          : QString();
+  return tr("Rule changed from %1 to %2%3")
+      .arg(qs(updateRuleInfo(fromRule).title), qs(updateRuleInfo(toRule).title),
+           why.isEmpty() ? QString() : QStringLiteral(": ") + why);
+}
+
+QString ParameterPanel::statusText() const {
+  return status_->isHidden() ? QString() : status_->text();
 }
 
 void ParameterPanel::showRemapTime(double milliseconds) {
@@ -237,6 +310,7 @@ void ParameterPanel::resetToDefaults() {
   if (defaults == settings_.parameters) return;
   settings_.parameters = defaults;
   showValues();
+  showStatus({});
   changed();
 }
 
@@ -256,19 +330,9 @@ void ParameterPanel::chooseModel(int index) {
   if (updating_ || index < 0) return;
   const std::string model = model_->itemData(index).toString().toStdString();
   if (model == settings_.model) return;
-  std::string rule = settings_.rule;
-  QString note;
-  const Compatibility c = compatibility(model, rule);
-  if (!c.allowed) {
-    // Keep the model the user picked and move the rule to the first one that fits it.
-    for (const std::string& r : updateRuleNames()) {
-      if (compatibility(model, r).allowed) {
-        rule = r;
-        break;
-      }
-    }
-    note = tr("Rule changed from %1 to %2: %3").arg(qs(settings_.rule), qs(rule), qs(c.reason));
-  }
+  const std::string rule = ruleForModel(model, settings_.rule);
+  const QString note =
+      rule != settings_.rule ? ruleChangeNote(settings_.rule, model, rule) : QString();
   settings_.parameters = carriedOver(model, rule, settings_.parameters);
   settings_.model = model;
   settings_.rule = rule;
@@ -278,8 +342,19 @@ void ParameterPanel::chooseModel(int index) {
   updating_ = false;
   refreshRuleAvailability();
   rebuildRows();
-  showStatus(note);
+  showStatus(note);  // stays until the next change
   changed();
+}
+
+std::string ParameterPanel::ruleForModel(const std::string& model, const std::string& current) {
+  // The paper's pairing first (ModelInfo::preferredRule), then the current rule, then the first
+  // rule that fits.
+  const std::string& preferred = sensorModelInfo(model).preferredRule;
+  if (!preferred.empty() && compatibility(model, preferred).allowed) return preferred;
+  if (compatibility(model, current).allowed) return current;
+  for (const std::string& r : updateRuleNames())
+    if (compatibility(model, r).allowed) return r;
+  return current;
 }
 
 void ParameterPanel::chooseRule(int index) {
@@ -326,6 +401,10 @@ void ParameterPanel::rebuildRows() {
   // Short headings (the choosers above show the titles): a long one would widen the dock.
   addRows(model.parameters, tr("Model (%1)").arg(qs(model.name)));
   addRows(rule.parameters, tr("Rule (%1)").arg(qs(rule.name)));
+  // The rows are never squeezed or cut: the panel (and its dock) is at least as wide as they need
+  // with the vertical scroll bar beside them.
+  scroll_->setMinimumWidth(rowsHost_->minimumSizeHint().width() +
+                           scroll_->verticalScrollBar()->sizeHint().width());
   showValues();
 }
 
@@ -353,8 +432,19 @@ void ParameterPanel::addRows(const std::vector<ParameterSpec>& specs, const QStr
     row.slider->setPageStep(std::max(1, positions / 20));
     row.slider->setFocusPolicy(Qt::StrongFocus);
     row.slider->setToolTip(tip);
-    row.slider->setAccessibleName(labelText(spec));
-    row.spin = new QDoubleSpinBox(box);
+    row.slider->setAccessibleName(fullName(spec));
+    // Never squeezed to a bare handle: the dock grows (or scrolls) before the groove shrinks.
+    row.slider->setMinimumWidth(kMinSliderWidth);
+    auto* typed = new ParameterSpinBox(box);
+    typed->outOfRange = [this, spec](const QString& text) {
+      showStatus(tr("%1: %2 is out of range (%3 … %4); the value stays %5")
+                     .arg(fullName(spec), text)
+                     .arg(spec.min)
+                     .arg(spec.max)
+                     .arg(settings_.parameters.get(spec.name)));
+    };
+    typed->setCorrectionMode(QAbstractSpinBox::CorrectToPreviousValue);
+    row.spin = typed;
     row.spin->setObjectName(QStringLiteral("spin_") + name);
     const int decimals = spec.integer
                              ? 0
@@ -367,7 +457,7 @@ void ParameterPanel::addRows(const std::vector<ParameterSpec>& specs, const QStr
     row.spin->setSuffix(unitSuffix(spec.unit));
     row.spin->setKeyboardTracking(false);  // typing "0.15" re-maps once, on Enter
     row.spin->setToolTip(tip);
-    row.spin->setAccessibleName(labelText(spec));
+    row.spin->setAccessibleName(fullName(spec));
     label->setBuddy(row.spin);
     grid->addWidget(label, line, 0);
     grid->addWidget(row.slider, line, 1);
@@ -426,6 +516,7 @@ void ParameterPanel::commit(const std::string& name, double value) {
     const QSignalBlocker block(preset_);
     preset_->setCurrentIndex(0);
   }
+  showStatus({});  // a new value: the last note is history
   changed();
 }
 

@@ -6,6 +6,7 @@
 // settingsChanged once; the re-mapping controller cancels runs that a newer change made stale.
 
 #include <QWidget>
+#include <string>
 #include <vector>
 
 #include "sonargrid/mapper.h"
@@ -14,6 +15,7 @@ class QComboBox;
 class QDoubleSpinBox;
 class QLabel;
 class QPushButton;
+class QScrollArea;
 class QSlider;
 class QVBoxLayout;
 
@@ -37,6 +39,18 @@ class ParameterPanel : public QWidget {
   // A non-integer parameter's slider moves in "nice" steps (1, 2 or 5 × 10^k) of at least
   // 1/kSliderResolution of its range, so slider values print as short decimals.
   static constexpr int kSliderResolution = 1000;
+  // No slider is laid out narrower than this (the panel's rows keep the symbol only, the long
+  // name goes to the tooltip).
+  static constexpr int kMinSliderWidth = 96;  // a groove of at least 80 px in any style
+
+  // The note under the choosers ("Rule changed from …", an out-of-range value), or "" when none
+  // is shown.
+  QString statusText() const;
+
+  // The rule to use with `model` when the user switches to it from a map with rule `current`: the
+  // paper's pairing (ModelInfo::preferredRule), else `current` if it fits, else the first that
+  // fits.
+  static std::string ruleForModel(const std::string& model, const std::string& current);
 
  public slots:
   void showRemapTime(double milliseconds);
@@ -64,6 +78,8 @@ class ParameterPanel : public QWidget {
   void commit(const std::string& name, double value);
   void changed();
   void showStatus(const QString& text);
+  QString ruleChangeNote(const std::string& fromRule, const std::string& model,
+                         const std::string& toRule) const;
 
   sg::MapperSettings settings_;
   QComboBox* model_ = nullptr;
@@ -73,6 +89,7 @@ class ParameterPanel : public QWidget {
   QLabel* status_ = nullptr;
   QLabel* remapTime_ = nullptr;
   QWidget* rowsHost_ = nullptr;
+  QScrollArea* scroll_ = nullptr;
   QVBoxLayout* rowsLayout_ = nullptr;
   std::vector<ParameterRow> rows_;
   bool updating_ = false;  // true while the panel itself moves widgets to show settings_

@@ -194,12 +194,9 @@ void reportProgress(const Context& ctx, const std::string& what, std::size_t don
 
 }  // namespace reproduce
 
-namespace {
+namespace reproduce {
 
-// Where the bundled datasets are when --datasets is not given: the source tree's (a build run
-// from its tree), then the installed copy.
-reproduce::fs::path defaultDatasets() {
-  namespace fs = reproduce::fs;
+fs::path defaultDatasets() {
 #ifdef SONARGRID_SOURCE_DATASETS
   if (fs::is_directory(SONARGRID_SOURCE_DATASETS)) return SONARGRID_SOURCE_DATASETS;
 #endif
@@ -209,7 +206,7 @@ reproduce::fs::path defaultDatasets() {
   throw InputError("no bundled datasets folder found; give one with --datasets DIR");
 }
 
-}  // namespace
+}  // namespace reproduce
 
 int runReproduce(Arguments& args) {
   namespace fs = reproduce::fs;
@@ -247,7 +244,7 @@ int runReproduce(Arguments& args) {
   }
   args.finish();
   if (*paper != "arafat" && ctx.sets != 0) throw UsageError("--sets shapes the arafat sweep only");
-  ctx.datasets = datasets ? fs::path(*datasets) : defaultDatasets();
+  ctx.datasets = datasets ? fs::path(*datasets) : reproduce::defaultDatasets();
   if (!fs::is_directory(ctx.datasets))
     throw InputError("--datasets " + ctx.datasets.string() + ": not a directory");
   // Progress is for a person watching: on a terminal, or when asked; never in the way of --json.

@@ -2,7 +2,6 @@
 // `sonargrid-cli score`: a built map against a reference (docs/cli.md, docs/metrics.md). The map
 // is built from a log with the flags of `map`, or read from a ROS map_server .yaml.
 
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,48 +11,13 @@
 
 #include "commands.h"
 #include "map_options.h"
+#include "score_flags.h"
 #include "sonargrid/metrics/reference_score.h"
 #include "sonargrid/reference/read_reference.h"
 #include "sonargrid/reference/ros_map_reader.h"
 
 namespace sg::cli {
 namespace {
-
-// The JSON keys of the contract, in order, with the metric each reports.
-struct JsonKey {
-  const char* key;
-  Metric metric;
-};
-constexpr JsonKey kJsonKeys[] = {
-    {"iop_mm", Metric::Iop},
-    {"correlation_pct", Metric::Correlation},
-    {"map_score_pct", Metric::MapScore},
-    {"map_score_occupied_pct", Metric::MapScoreOccupied},
-    {"match_bits", Metric::Match},
-    {"path_false_positive_pct", Metric::PathFalsePositive},
-    {"path_false_negative_pct", Metric::PathFalseNegative},
-    {"cross_entropy", Metric::CrossEntropy},
-    {"brier", Metric::Brier},
-    {"auc", Metric::Auc},
-    {"precision", Metric::Precision},
-    {"recall", Metric::Recall},
-    {"f1", Metric::F1},
-    {"iou", Metric::Iou},
-};
-
-std::string formatted(const std::optional<double>& v, const char* unit, int precision = 2) {
-  if (!v) return "undefined";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f%s", precision, *v, unit);
-  return buffer;
-}
-
-struct Line {
-  Metric metric;
-  const char* label;
-  const char* unit;
-  int precision;
-};
 
 void printText(const ReferenceScore& s, const OccupancyMap& map, const std::string& source,
                const std::string& referencePath, const ScoreOptions& options, double elapsedMs) {
@@ -62,29 +26,14 @@ void printText(const ReferenceScore& s, const OccupancyMap& map, const std::stri
             << s.apgCells << " cells; ideal map: " << s.idealOccupied << " occupied, "
             << s.idealFree << " free, " << s.idealUnknown << " unknown; " << s.cellsEvaluated
             << " cells evaluated\n";
-  static const Line kLines[] = {
-      {Metric::Iop, "IOP", " mm", 1},
-      {Metric::Correlation, "correlation", " %", 2},
-      {Metric::MapScore, "map score", " %", 2},
-      {Metric::MapScoreOccupied, "map score, occupied cells", " %", 2},
-      {Metric::Match, "match (Moravec-Blackwell)", " bits", 1},
-      {Metric::PathFalsePositive, "path false positives", " %", 1},
-      {Metric::PathFalseNegative, "path false negatives", " %", 1},
-      {Metric::CrossEntropy, "cross-entropy", " bits/cell", 4},
-      {Metric::Brier, "Brier score", "", 4},
-      {Metric::Auc, "ROC AUC", "", 4},
-      {Metric::Precision, "precision (occupied)", "", 4},
-      {Metric::Recall, "recall (occupied)", "", 4},
-      {Metric::F1, "F1 (occupied)", "", 4},
-      {Metric::Iou, "IoU (occupied)", "", 4},
-  };
-  for (const Line& l : kLines) {
+  for (const MetricFormat& l : metricFormats()) {
     if (s.computed.count(l.metric) == 0) continue;
     std::string label = l.label;
     label.resize(28, ' ');
-    std::cout << "  " << label << formatted(s.value(l.metric), l.unit, l.precision);
+    std::cout << "  " << label << formatMetric(s.value(l.metric), l.unit, l.precision);
     if (l.metric == Metric::Iop) {
-      std::cout << "  (" << s.iop.filledCells << " filled cells, sum of CV " << s.iop.cvSum << ")";
+      std::cout << "  (" << s.iop.filledCells << " filled cells, sum of CV " << s.iop.cvSum
+                << ", weight " << iopWeightName(options.iop.weight) << ")";
     } else if (l.metric == Metric::PathFalsePositive) {
       std::cout << "  (" << s.paths.collisions << " of " << s.paths.pathsFound << " paths collide)";
     } else if (l.metric == Metric::PathFalseNegative) {
@@ -100,18 +49,7 @@ void printText(const ReferenceScore& s, const OccupancyMap& map, const std::stri
 
 int runScore(Arguments& args) {
   const std::string referencePath = args.required("--reference");
-  ScoreOptions options;
-  if (const auto list = args.value("--metrics")) {
-    try {
-      options.metrics = parseMetricList(*list);
-    } catch (const std::invalid_argument& e) {
-      throw UsageError(std::string("--metrics: ") + e.what());
-    }
-  }
-  const double pairs = args.number("--pairs", kDefaultPathPairs, 0, 1'000'000);
-  if (pairs != std::floor(pairs)) throw UsageError("--pairs expects a whole number");
-  options.pairs = static_cast<int>(pairs);
-  if (const auto seed = args.value("--seed")) options.seed = parseSeed(*seed);
+  const ScoreOptions options = parseScoreOptions(args);
   const bool json = args.flag("--json");
 
   // --map FILE.yaml, or --log FILE with the flags of `map` (parsed by the same code).
@@ -160,15 +98,20 @@ int runScore(Arguments& args) {
   const double elapsedMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
+  // A reference that the map never saw gives numbers that mean nothing: say so, on stderr and in
+  // the JSON (issue 17).
+  for (const std::string& w : score.warnings)
+    std::cerr << "sonargrid-cli: warning: " << referencePath << ": " << w << '\n';
   if (json) {
     nlohmann::ordered_json out;
-    for (const JsonKey& k : kJsonKeys) {
+    for (const MetricFormat& k : metricFormats()) {
       if (score.computed.count(k.metric) == 0) continue;  // not asked for: omitted
       const std::optional<double> v = score.value(k.metric);
       out[k.key] =
           v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);  // undefined: null
     }
     out["cells_evaluated"] = score.cellsEvaluated;
+    if (!score.warnings.empty()) out["warnings"] = score.warnings;
     std::cout << out.dump() << '\n';
   } else {
     printText(score, map, source, referencePath, options, elapsedMs);

@@ -9,6 +9,7 @@ namespace sg::cli {
 int runModels(Arguments& args);
 int runMap(Arguments& args);
 int runScore(Arguments& args);
+int runCompare(Arguments& args);
 int runGoodness(Arguments& args);
 int runSimulate(Arguments& args);
 int runReproduce(Arguments& args);
@@ -19,5 +20,6 @@ int runSweepCommand(Arguments& args);
 int runSweepMerge(Arguments& args);
 int runOptimize(Arguments& args);
 int runGoodnessStudy(Arguments& args);
+int runBench(Arguments& args);
 
 }  // namespace sg::cli

@@ -22,10 +22,16 @@ commands:
       [--ros-map BASENAME] [--threads N] [--json]
                              build an occupancy grid from a log
   score --reference REF (--log FILE [map flags] | --map FILE.yaml)
-      [--metrics LIST] [--pairs N] [--seed N] [--json]
+      [--metrics LIST] [--pairs N] [--seed N] [--iop-weight evidence|level]
+      [--filled-threshold CV] [--json]
                              score a map against a reference (JSON, ArMap .map or ROS
                              .yaml): IOP, correlation, map score, match, path comparison,
                              cross-entropy, Brier, AUC, precision/recall/F1/IoU
+  compare --log FILE [--log FILE]... --reference REF --config MODEL/RULE[:P=V,...] ...
+      [--cells common|own] [--cell M] [--pose odom|truth] [score's flags]
+      [--csv OUT] [--markdown OUT] [--threads N] [--json]
+                             every reference metric per configuration, mean and standard
+                             deviation over the logs, on the cells all of them observed
   goodness --log FILE [map flags] [--second-log FILE] [--json]
                              map quality without a reference: VSDNS, derivative noise,
                              map entropy, two-run comparison
@@ -65,14 +71,17 @@ commands:
                              Spearman's rho between each reference-free measure and each
                              reference metric over a sweep's sets, with bootstrap
                              intervals (docs/goodness-study.md)
+  bench [--quick] [--json] [--threads N] [--progress]
+                             time the standard workloads: office and 100k-reading
+                             re-maps per pair, a 1M-reading load, bytes per cell
   help                       this text
 
 log flags (every command that reads a log):
   --format auto|sglog|carmen|player|csv   --lenient   --robot PRESET|GEOMETRY_FILE
   --columns SPEC   --poses FILE           (docs/formats.md)
 
-threads (map, score --log, goodness, reproduce, sweep): --threads N, else the environment
-  variable SONARGRID_THREADS, else the CPUs the process may use (its affinity mask);
+threads (map, score --log, compare, goodness, reproduce, sweep, bench): --threads N, else the
+  environment variable SONARGRID_THREADS, else the CPUs the process may use (its affinity mask);
   results are the same for any N
 
 See docs/cli.md for the full contract.
@@ -96,6 +105,7 @@ int main(int argc, char** argv) {
     if (command == "models") return sg::cli::runModels(args);
     if (command == "map") return sg::cli::runMap(args);
     if (command == "score") return sg::cli::runScore(args);
+    if (command == "compare") return sg::cli::runCompare(args);
     if (command == "goodness") return sg::cli::runGoodness(args);
     if (command == "simulate") return sg::cli::runSimulate(args);
     if (command == "reproduce") return sg::cli::runReproduce(args);
@@ -106,6 +116,7 @@ int main(int argc, char** argv) {
     if (command == "sweep-merge") return sg::cli::runSweepMerge(args);
     if (command == "optimize") return sg::cli::runOptimize(args);
     if (command == "goodness-study") return sg::cli::runGoodnessStudy(args);
+    if (command == "bench") return sg::cli::runBench(args);
     throw sg::cli::UsageError("unknown command '" + command + "' (try sonargrid-cli help)");
   } catch (const sg::cli::UsageError& e) {
     std::cerr << "sonargrid-cli: " << e.what() << '\n';

@@ -33,7 +33,11 @@ Json runRaschke1990(const Context& ctx);
 Json runOSullivan(const Context& ctx);
 Json runArafat(const Context& ctx);
 
-// ---- shared by the three
+// ---- shared by the three (and `bench`)
+
+// Where the bundled datasets are when --datasets is not given: the source tree's (a build run from
+// its tree), then the installed copy. InputError when neither exists.
+fs::path defaultDatasets();
 
 // Simulates `folders` (raschke-multi, raschke-single, arafat-room) as datasets/generate.sh does,
 // under the physics `preset`, from the world.json and route.txt of source/<folder>, into

@@ -2,20 +2,27 @@
 // sonargrid: the desktop app. Only the command line lives here; the window is main_window.cpp.
 //
 //   sonargrid [LOG] [--reference REF] [--model M --rule R --set k=v ...] [--pose odom|truth]
-//             [--cell METRES] [--raster] [--screenshot FILE]
-//   sonargrid PROJECT.sgproj [--raster] [--screenshot FILE]
+//             [--cell METRES] [--raster] [--inspect X,Y] [--screenshot FILE] [--metrics-json FILE]
+//   sonargrid PROJECT.sgproj [--raster] [--inspect X,Y] [--screenshot FILE] [--metrics-json FILE]
 
 #include <QApplication>
 #include <QCommandLineParser>
+#include <QDockWidget>
+#include <QElapsedTimer>
 #include <QFileInfo>
 #include <QPixmap>
 #include <QScreen>
 #include <QTimer>
 #include <cmath>
 #include <iostream>
+#include <optional>
+#include <string_view>
 
+#include "cell_inspector.h"
+#include "comparison_table.h"
 #include "export_file.h"
 #include "main_window.h"
+#include "metrics_panel.h"
 #include "preferences.h"
 #include "project_file.h"
 #include "sonargrid/concurrency.h"
@@ -81,24 +88,42 @@ sg::MapperSettings settingsFrom(const QCommandLineParser& args) {
   return s;
 }
 
-}  // namespace
+// --inspect: traces the cell at `world` and shows its last reading (the timeline moves to it).
+// False, after saying why, when the point is off the grid or the trace fails.
+bool inspectCell(sg::app::MainWindow& window, const sg::Position& world) {
+  sg::ui::CellInspector* inspector = window.cellInspector();
+  if (!inspector->inspectAt(world)) {
+    std::cerr << "sonargrid: --inspect " << world.x() << "," << world.y()
+              << " is outside the grid\n";
+    return false;
+  }
+  if (auto* dock = window.findChild<QDockWidget*>(QStringLiteral("cellInspectorDock"))) {
+    dock->show();
+    dock->raise();
+  }
+  QElapsedTimer clock;
+  clock.start();
+  while (inspector->busy() && clock.elapsed() < 120000)
+    QApplication::processEvents(QEventLoop::AllEvents, 50);
+  if (!inspector->trace()) {
+    std::cerr << "sonargrid: the cell inspector did not trace the cell\n";
+    return false;
+  }
+  if (!inspector->trace()->steps.empty())
+    inspector->selectStep(inspector->trace()->steps.size() - 1);
+  return true;
+}
 
-int main(int argc, char** argv) {
-  QApplication app(argc, argv);
-  QApplication::setOrganizationName(QStringLiteral("SonarGrid"));
-  QApplication::setApplicationName(QStringLiteral("sonargrid"));
-  QApplication::setApplicationDisplayName(QStringLiteral("SonarGrid"));
-  QApplication::setApplicationVersion(QStringLiteral(SONARGRID_VERSION));
-  QApplication::setDesktopFileName(QStringLiteral("sonargrid"));
-
-  QCommandLineParser parser;
+// The command line, the same for the window and for --help / --version.
+void describeOptions(QCommandLineParser& parser) {
   parser.setApplicationDescription(
       QStringLiteral("SonarGrid: build and compare sonar occupancy grids."));
   parser.addHelpOption();
   parser.addVersionOption();
   parser.addPositionalArgument(QStringLiteral("LOG"),
                                QStringLiteral("A log (.sglog, CARMEN, Player, CSV) or a project "
-                                              "(.sgproj) to open."),
+                                              "(.sgproj) to open. A log of a bundled dataset "
+                                              "opens with the dataset's reference map."),
                                QStringLiteral("[LOG | PROJECT.sgproj]"));
   parser.addOptions({
       {QStringLiteral("reference"), QStringLiteral("Reference map (.json, .map, .yaml)."),
@@ -113,10 +138,57 @@ int main(int argc, char** argv) {
       {QStringLiteral("cell"), QStringLiteral("Cell size in metres (default 0.05)."),
        QStringLiteral("METRES")},
       {QStringLiteral("raster"), QStringLiteral("Draw the grid without OpenGL.")},
+      {QStringLiteral("inspect"),
+       QStringLiteral("Inspect the cell at world point X,Y (metres) once mapped: the Cell "
+                      "Inspector traces it and shows its last reading in the beam view."),
+       QStringLiteral("X,Y")},
       {QStringLiteral("screenshot"),
        QStringLiteral("Load, map, save a picture of the window to FILE and exit."),
        QStringLiteral("FILE")},
+      {QStringLiteral("metrics-json"),
+       QStringLiteral("Load, map, write the metrics panel's numbers (the keys of sonargrid-cli "
+                      "score --json) to FILE and exit."),
+       QStringLiteral("FILE")},
   });
+}
+
+void nameApplication() {
+  QCoreApplication::setOrganizationName(QStringLiteral("SonarGrid"));
+  QCoreApplication::setApplicationName(QStringLiteral("sonargrid"));
+  QCoreApplication::setApplicationVersion(QStringLiteral(SONARGRID_VERSION));
+}
+
+// --help, --help-all, --version (and -h, -?, -v) need no window: they are answered before the
+// QApplication exists, so they print and exit 0 without a display.
+bool asksForTextOnly(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view a = argv[i];
+    if (a == "--") break;
+    if (a == "-h" || a == "-?" || a == "--help" || a == "--help-all" || a == "-v" ||
+        a == "--version")
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (asksForTextOnly(argc, argv)) {
+    QCoreApplication text(argc, argv);
+    nameApplication();
+    QCommandLineParser parser;
+    describeOptions(parser);
+    parser.process(text);  // prints and exits 0
+    return 0;
+  }
+  QApplication app(argc, argv);
+  nameApplication();
+  QApplication::setApplicationDisplayName(QStringLiteral("SonarGrid"));
+  QApplication::setDesktopFileName(QStringLiteral("sonargrid"));
+
+  QCommandLineParser parser;
+  describeOptions(parser);
   parser.process(app);
 
   // The Mapping threads preference; a bad SONARGRID_THREADS is said once here (the core passes it
@@ -134,6 +206,7 @@ int main(int argc, char** argv) {
                                                           Qt::CaseInsensitive) == 0;
   sg::MapperSettings settings;
   double cell = sg::app::MainWindow::lastCellSize();
+  std::optional<sg::Position> inspectAt;
   try {
     if (parser.positionalArguments().size() > 1)
       throw UsageError{QStringLiteral("give at most one LOG")};
@@ -145,8 +218,18 @@ int main(int argc, char** argv) {
         throw UsageError{QStringLiteral("--cell takes metres in [0.005, 1], got '%1'")
                              .arg(parser.value("cell"))};
     }
-    if (parser.isSet("screenshot") && parser.positionalArguments().isEmpty())
-      throw UsageError{QStringLiteral("--screenshot needs a LOG or a PROJECT to map")};
+    if (parser.isSet("inspect")) {
+      const QStringList xy = parser.value("inspect").split(QLatin1Char(','));
+      bool okX = false, okY = false;
+      if (xy.size() == 2) inspectAt = sg::Position(xy[0].toDouble(&okX), xy[1].toDouble(&okY));
+      if (!okX || !okY || !inspectAt->allFinite())
+        throw UsageError{
+            QStringLiteral("--inspect takes X,Y in metres, got '%1'").arg(parser.value("inspect"))};
+    }
+    for (const char* option : {"screenshot", "metrics-json"})
+      if (parser.isSet(QString::fromLatin1(option)) && parser.positionalArguments().isEmpty())
+        throw UsageError{QStringLiteral("--%1 needs a LOG or a PROJECT to map")
+                             .arg(QString::fromLatin1(option))};
     if (isProject)
       for (const char* option : {"reference", "model", "rule", "set", "pose", "cell"})
         if (parser.isSet(QString::fromLatin1(option)))
@@ -158,7 +241,8 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  const bool screenshot = parser.isSet("screenshot");
+  // Either writes its files and exits without waiting for the user (and without a display).
+  const bool screenshot = parser.isSet("screenshot") || parser.isSet("metrics-json");
   sg::app::MainWindow window(parser.isSet("raster") ? sg::ui::GridView::Backend::Raster
                                                     : sg::ui::GridView::Backend::Automatic);
   if (screenshot) window.resize(1280, 800);
@@ -178,11 +262,42 @@ int main(int argc, char** argv) {
   // A crashed session's autosave: offered when the user opened nothing else (SONARGRID_RECOVER
   // answers without a dialog; without a display nothing blocks).
   if (!screenshot && file.isEmpty()) window.offerRecovery();
+  if (inspectAt && !file.isEmpty() && window.waitForMap(120000) &&
+      !inspectCell(window, *inspectAt) && screenshot)
+    return 1;
 
   if (screenshot) {
-    if (!window.waitForMap(120000)) {
+    if (!window.waitForMap(120000)) {  // again: an inspected reading maps up to its time
       std::cerr << "sonargrid: mapping did not finish\n";
       return 1;
+    }
+    if (parser.isSet("metrics-json")) {
+      // The panel's numbers of the map the window shows, as `sonargrid-cli score --json` (and
+      // `goodness --json` without a reference) writes them; the panel is brought to the front so
+      // that the screenshot shows them.
+      auto* panel = window.findChild<sg::ui::MetricsPanel*>();
+      if (auto* dock = window.findChild<QDockWidget*>(QStringLiteral("metricsDock"))) dock->raise();
+      if (!panel || !panel->waitForResult(300000) || !panel->result()) {
+        std::cerr << "sonargrid: the metrics did not finish\n";
+        return 1;
+      }
+      const QString jsonFile = parser.value("metrics-json");
+      const std::string json = sg::ui::metricsJson(*panel->result()) + '\n';
+      const QString error =
+          sg::app::writeFileBytes(jsonFile, QByteArray(json.data(), qsizetype(json.size())));
+      if (!error.isEmpty()) {
+        std::cerr << "sonargrid: " << error.toStdString() << '\n';
+        return 1;
+      }
+      std::cout << "wrote " << jsonFile.toStdString() << '\n';
+      if (!parser.isSet("screenshot")) return 0;
+      // A project's pinned rows: the comparison table shows them, computed.
+      auto* table = window.findChild<sg::ui::ComparisonTable*>();
+      if (table && !table->rows().empty()) {
+        if (auto* dock = window.findChild<QDockWidget*>(QStringLiteral("comparisonDock")))
+          dock->raise();
+        table->waitForResult(300000);
+      }
     }
     // Let the window lay out and paint the new map once before grabbing it.
     for (int i = 0; i < 5; ++i) QApplication::processEvents(QEventLoop::AllEvents, 20);

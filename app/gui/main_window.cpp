@@ -24,9 +24,11 @@
 #include "csv_import_dialog.h"
 #include "document.h"
 #include "log_loader.h"
+#include "main_window_metrics.h"
+#include "main_window_sweep.h"
 #include "parameter_panel.h"
-#include "remap_controller.h"
 #include "reference_editing.h"
+#include "remap_controller.h"
 #include "robot_dock.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/models/sensor_model.h"
@@ -104,9 +106,12 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
 
   createActions();
   createDocks();
+  createInspector();
   createMenus();
   installRobotMenu(this);
   installReferenceEditor(this);
+  installMetrics(this);
+  installSweepView(this);
   restoreWindowState();
   connectDocument();
   mappedSettings_ = document_->mapperSettings();
@@ -222,6 +227,13 @@ void MainWindow::connectDocument() {
   });
   connect(document_, &Document::modifiedChanged, this, &QWidget::setWindowModified);
   connect(document_, &Document::projectPathChanged, this, &MainWindow::updateTitle);
+  // The beam view's "Compare with" offers the pinned rows.
+  connect(document_, &Document::pinnedRowsChanged, this, [this] {
+    std::vector<ui::BeamModelView::NamedSettings> pinned;
+    for (const PinnedRow& row : document_->pinnedRows())
+      pinned.push_back({row.label, row.settings});
+    if (beamView_) beamView_->setPinnedConfigurations(std::move(pinned));
+  });
 }
 
 void MainWindow::onSettingsChanged() {
@@ -246,6 +258,8 @@ void MainWindow::onReferenceChanged() {
   const auto& reference = document_->reference();
   view_->setReferenceLines(reference ? ui::referencePolylines(*reference)
                                      : std::vector<std::vector<Position>>{});
+  view_->setFocusArea(ui::focusArea(document_->dataset().get(), document_->mapperSettings().pose,
+                                    reference ? &*reference : nullptr));
   updateSummary();
 }
 

@@ -33,6 +33,8 @@ class QTimer;
 
 namespace sg::ui {
 class BeamModelView;
+class CellInspector;
+class CellPicker;
 class ParameterPanel;
 class RemapController;
 class Timeline;
@@ -113,6 +115,11 @@ class MainWindow : public QMainWindow {
   // Shows sonar `sonar`'s reading of the current scan in the beam view from now on (while the
   // scans hold one); false when the current scan has no reading of it.
   bool chooseBeamSonar(std::size_t sonar);
+  // The cell inspector's dock widget (main_window_inspector.cpp).
+  ui::CellInspector* cellInspector() const { return inspector_; }
+  // Moves the timeline to scan `scan` and shows its reading of `sonar` in the beam view; false
+  // when the log has no such scan or reading.
+  bool showReading(std::size_t scan, std::size_t sonar);
   const QStringList& recentFiles() const { return recent_; }
 
   // Blocks (running the event loop) until the newest requested map has arrived; false on timeout
@@ -184,6 +191,8 @@ class MainWindow : public QMainWindow {
   // main_window_docks.cpp: every dock of the window.
   void createDocks();
   void restoreWindowState();
+  // main_window_inspector.cpp: the cell inspector's dock and its links.
+  void createInspector();
 
   // main_window_export.cpp
   // Waits for a re-map in progress; false (and says so) unless the view shows the full map of the
@@ -210,6 +219,8 @@ class MainWindow : public QMainWindow {
   ui::Timeline* timeline_ = nullptr;
   ui::ParameterPanel* panel_ = nullptr;
   ui::BeamModelView* beamView_ = nullptr;
+  ui::CellInspector* inspector_ = nullptr;
+  ui::CellPicker* picker_ = nullptr;
   QComboBox* readingChooser_ = nullptr;
   QDoubleSpinBox* cellSpin_ = nullptr;
   std::optional<std::size_t> chosenSonar_;  // the user's pick; none: the first reading with echo

@@ -124,7 +124,8 @@ void MainWindow::createDocks() {
   splitDockWidget(beamDock, panelDock, Qt::Horizontal);
   tabifyDockWidget(beamDock, summaryDock);
   beamDock->raise();
-  resizeDocks({beamDock, panelDock}, {350, 340}, Qt::Horizontal);
+  // The grid keeps at least half of a 1280 px window; the panel's sliders keep 80 px each.
+  resizeDocks({beamDock, panelDock}, {260, 290}, Qt::Horizontal);
   updateSummary();
 }
 

@@ -96,6 +96,7 @@ bool MainWindow::exportMapPngTo(const QString& path) {
   try {
     PngOptions o;
     o.legend = true;
+    o.unknown = kUnknownColour;  // never-observed cells as the view draws them
     o.scale = std::max(1, static_cast<int>(std::lround(0.2 / fullMap_->spec.cellSize)));
     writeMapPng(*fullMap_, QDir::toNativeSeparators(path).toStdString(), o);
     return true;

@@ -15,6 +15,7 @@
 
 #include "beam_model_view.h"
 #include "csv_import_dialog.h"
+#include "dataset_manifest.h"
 #include "document.h"
 #include "log_loader.h"
 #include "main_window.h"
@@ -122,23 +123,36 @@ void MainWindow::adoptLog(const QString& path, std::shared_ptr<const Dataset> da
   } else {
     pendingProject_.reset();
     document_->setLog(path, std::move(dataset));
+    // The log's own reference map: the one its dataset's manifest declares (datasets/*/
+    // dataset.json, docs/formats.md), else one beside it with its name (room.sglog + room.json).
+    QString manifestError;
+    const std::optional<DatasetManifest> manifest = manifestForLog(path, &manifestError);
+    if (!manifestError.isEmpty())
+      reportError(tr("Cannot read the dataset's manifest"), manifestError, true);
+    const QString sibling = QFileInfo(path).path() + QDir::separator() +
+                            QFileInfo(path).completeBaseName() + QStringLiteral(".json");
+    const QString own = manifest && !manifest->reference.isEmpty() ? manifest->reference
+                        : QFileInfo::exists(sibling)               ? sibling
+                                                                   : QString();
     // A reference drawn for another log does not describe this one: it goes, as one undo step
-    // (Edit ▸ Undo keeps it after all).
+    // (Edit ▸ Undo keeps it after all), unless it is this log's own, unedited (another run of the
+    // same dataset).
+    const bool ownAlready = document_->reference() && !document_->referenceModified() &&
+                            !own.isEmpty() &&
+                            QFileInfo(document_->referencePath()).canonicalFilePath() ==
+                                QFileInfo(own).canonicalFilePath();
     if (document_->reference() && !document_->referenceLog().isEmpty() &&
-        document_->referenceLog() != path) {
+        document_->referenceLog() != path && !ownAlready) {
       document_->setReference(std::nullopt, {});
       statusBar()->showMessage(
           tr("Reference map closed: it was drawn for another log (Edit ▸ Undo keeps it)"), 15000);
     }
     if (document_->reference()) document_->setReferenceLog(path);
-    // A reference map beside the log (room.sglog + room.json) is taken along unless one is
-    // loaded; part of opening the log, not an edit.
-    const QString sibling = QFileInfo(path).path() + QDir::separator() +
-                            QFileInfo(path).completeBaseName() + QStringLiteral(".json");
-    if (!document_->reference() && QFileInfo::exists(sibling)) {
+    // Unless one is loaded, the log's own comes with it: part of opening the log, not an edit.
+    if (!document_->reference() && !own.isEmpty()) {
       try {
-        document_->applyReference(readReference(QDir::toNativeSeparators(sibling).toStdString()),
-                                  sibling, false);
+        document_->applyReference(readReference(QDir::toNativeSeparators(own).toStdString()), own,
+                                  false);
         document_->setReferenceLog(path);
       } catch (const std::exception& e) {
         reportError(tr("Cannot open reference map"), QString::fromStdString(e.what()), true);
@@ -171,6 +185,7 @@ void MainWindow::adoptLog(const QString& path, std::shared_ptr<const Dataset> da
   chosenSonar_.reset();
   beamView_->setMaxRange(run.ring.maxRange);
   scanShownPose_.reset();  // a new log: its scan must be drawn
+  onReferenceChanged();    // the first view fits the robot's path and the reference
   showSettings();
   remap_->start(document_->dataset(), document_->cellSize(), document_->mapperSettings(),
                 timeline_->time());

@@ -13,16 +13,22 @@
 #include <QMenuBar>
 #include <QMimeData>
 #include <QSettings>
+#include <QTimer>
 #include <QUndoStack>
 
+#include "dataset_manifest.h"
 #include "datasets_location.h"
 #include "document.h"
+#include "example_chooser.h"
 #include "help_dialogs.h"
 #include "main_window.h"
+#include "parameter_panel.h"
 #include "preferences.h"
 #include "project_file.h"
+#include "remap_controller.h"
 #include "sonargrid/models/sensor_model.h"
 #include "sonargrid/rules/update_rule.h"
+#include "tour_dialog.h"
 
 namespace sg::app {
 namespace {
@@ -105,7 +111,8 @@ void MainWindow::createActions() {
       {ui::Overlay::Robot, tr("R&obot")},
       {ui::Overlay::Beams, tr("Current &Beams")},
       {ui::Overlay::Ring, tr("Sonar R&ing")},
-      {ui::Overlay::Legend, tr("&Legend")}};
+      {ui::Overlay::Legend, tr("&Legend")},
+      {ui::Overlay::Dmin, tr("&D_min of Filled Cells")}};
   int key = 1;
   for (const auto& [overlay, title] : overlays) {
     auto* a = new QAction(title, this);
@@ -146,6 +153,19 @@ void MainWindow::createMenus() {
   file->addAction(exportViewSvgAction_);
   file->addAction(exportMapPngAction_);
   file->addAction(exportRosAction_);
+  // Nothing to export before a map is shown (a log or a live robot's map).
+  auto updateExports = [this] {
+    const bool any = view_->map() != nullptr;
+    for (QAction* a :
+         {exportViewPngAction_, exportViewSvgAction_, exportMapPngAction_, exportRosAction_})
+      a->setEnabled(any);
+  };
+  updateExports();
+  connect(file, &QMenu::aboutToShow, this, updateExports);
+  connect(document_, &Document::logChanged, this, updateExports);
+  // After the window has shown the new map.
+  connect(remap_, &ui::RemapController::mapped, this,
+          [this, updateExports] { QTimer::singleShot(0, this, updateExports); });
   file->addSeparator();
   QAction* quit = file->addAction(tr("&Quit"));
   quit->setShortcut(QKeySequence::Quit);
@@ -159,6 +179,7 @@ void MainWindow::createMenus() {
   edit->addAction(redoAction_);
 
   QMenu* view = menuBar()->addMenu(tr("&View"));
+  view->setObjectName(QStringLiteral("viewMenu"));
   view->addAction(fitAction_);
   view->addAction(cellSizeAction_);
   view->addSeparator();
@@ -195,6 +216,13 @@ void MainWindow::createMenus() {
   QAction* guide = help->addAction(tr("&User Guide"));
   guide->setShortcut(QKeySequence::HelpContents);
   connect(guide, &QAction::triggered, this, [this] { showUserGuide(this); });
+  QAction* tour = help->addAction(tr("Sonar Models in &5 Minutes"));
+  tour->setObjectName(QStringLiteral("tourAction"));
+  connect(tour, &QAction::triggered, this, [this] {
+    auto* dialog = new TourDialog(this);
+    dialog->setAttribute(Qt::WA_DeleteOnClose);
+    dialog->show();
+  });
   QAction* keys = help->addAction(tr("&Keyboard Shortcuts"));
   keys->setShortcut(QKeySequence(tr("Ctrl+/")));
   connect(keys, &QAction::triggered, this, [this] { showShortcuts(this); });
@@ -240,13 +268,8 @@ void MainWindow::rebuildMappingMenu() {
 void MainWindow::chooseModel(const QString& model) {
   MapperSettings s = document_->mapperSettings();
   s.model = model.toStdString();
-  if (!compatibility(s.model, s.rule).allowed) {
-    for (const std::string& rule : updateRuleNames())
-      if (compatibility(s.model, rule).allowed) {
-        s.rule = rule;
-        break;
-      }
-  }
+  // The paper's pairing, as the parameter panel chooses it (its note says so).
+  s.rule = ui::ParameterPanel::ruleForModel(s.model, s.rule);
   s.parameters = carryParameters(s.model, s.rule, document_->mapperSettings().parameters);
   setMapperSettings(s);
 }
@@ -352,13 +375,18 @@ void MainWindow::askCellSize() {
 
 void MainWindow::openExample() {
   const QString dir = bundledDatasetsDirectory();
-  if (dir.isEmpty()) {
-    reportError(tr("No examples"), tr("The bundled datasets were not found."), false);
+  QStringList errors;
+  std::vector<DatasetManifest> datasets;
+  if (!dir.isEmpty()) datasets = datasetManifests(dir, &errors);
+  if (datasets.empty()) {
+    reportError(tr("No examples"),
+                errors.isEmpty() ? tr("The bundled datasets were not found.") : errors.join('\n'),
+                false);
     return;
   }
-  const QString path =
-      QFileDialog::getOpenFileName(this, tr("Open Example"), dir, tr("SonarGrid logs (*.sglog)"));
-  if (!path.isEmpty()) openLog(path);
+  ExampleChooser chooser(std::move(datasets), this);
+  if (chooser.exec() == QDialog::Accepted && !chooser.chosenLog().isEmpty())
+    openLog(chooser.chosenLog());
 }
 
 }  // namespace sg::app

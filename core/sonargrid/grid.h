@@ -108,6 +108,12 @@ class Grid {
   const GridSpec& spec() const { return spec_; }
   const CellLayout& layout() const { return layout_; }
   std::size_t cellCount() const { return spec_.cellCount(); }
+  // The bytes the grid keeps per cell: every plane's value and the observed/written mark.
+  std::size_t bytesPerCell() const {
+    std::size_t bytes = sizeof(std::uint8_t);  // marks_
+    for (std::size_t p = 0; p < layout_.planes(); ++p) bytes += layout_.bytes(p);
+    return bytes;
+  }
 
   // The cells of one plane, row-major as GridSpec::linear() numbers them, typed as the rule
   // declared them. Throws std::logic_error when the layout has no such plane of type Cell (a rule

@@ -57,6 +57,31 @@ Mapper::Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings
   tables_ = BeamTables::shared(grid.cellSize, reach);
 }
 
+namespace {
+
+// How often batch mapping looks at the cancel flag, in readings.
+constexpr std::size_t kCancelStride = 256;
+// Below this many readings a thread costs more than it saves.
+constexpr std::size_t kParallelMinimum = 4096;
+// Footprints computed ahead of the one being applied: enough to keep the workers busy, few enough
+// that their buffers stay in cache.
+constexpr std::size_t kSlots = 64;
+constexpr std::int64_t kEmptySlot = -1;
+constexpr std::int64_t kHaltedSlot = -2;
+// Set in the pipeline's count of applied footprints when the run stops.
+constexpr std::size_t kHalted = std::size_t{1} << (std::numeric_limits<std::size_t>::digits - 1);
+// A snapshot's layers are filled on one more thread per this many cells.
+constexpr std::size_t kSnapshotCellsPerThread = 32768;
+// The height of the stripes of rows the threads share out (integrateStripes).
+constexpr int kStripeRows = 8;
+// Footprint parts whose totals a thread posts at once (integrateStripes, rules with totals): a post
+// is a store and a wake-up check on a cache line the other threads read, so posting every reading
+// kept the threads synchronising on every reading (15 % of hpf × addition's time at 2 threads).
+// Well under kSlots, so that a thread never runs out of ring while its totals wait to be posted.
+constexpr std::size_t kPostBatch = 16;
+
+}  // namespace
+
 void Mapper::reset() {
   grid_.clear();
   readings_ = 0;
@@ -110,34 +135,34 @@ bool Mapper::mapDataset(const Dataset& dataset, double until, const std::atomic<
     throw MapperError("the log has no true pose for every scan; map with odometry (--pose odom)");
   }
   reset();
-  std::vector<Beam> beams;
-  beams.reserve(dataset.readingCount());
-  for (const Scan& scan : dataset.scans) {
-    const Pose2D& robot = dataset.pose(scan, settings_.pose);
-    for (const Reading& r : scan.readings) {
-      if (r.time <= until) beams.push_back(beamOf(robot, r));
-    }
+  // Where each scan's beams start: the readings up to `until` of the scans before it.
+  const std::vector<Scan>& scans = dataset.scans;
+  std::vector<std::size_t> first(scans.size() + 1, 0);
+  for (std::size_t k = 0; k < scans.size(); ++k) {
+    std::size_t kept = 0;
+    for (const Reading& r : scans[k].readings) kept += r.time <= until ? 1 : 0;
+    first[k + 1] = first[k] + kept;
   }
+  // Each beam is its reading's own (a sine and a cosine of the robot's heading): a large log's
+  // are placed on the policy's threads, each taking a run of scans.
+  std::vector<Beam> beams(first.back());
+  const unsigned parts =
+      beams.size() < kParallelMinimum ? 1u : std::min<unsigned>(parallelThreads(), 8u);
+  runParallel(parts, [&](unsigned part) {
+    const std::size_t begin = scans.size() * part / parts;
+    const std::size_t end = scans.size() * (part + 1) / parts;
+    for (std::size_t k = begin; k < end; ++k) {
+      const Pose2D& robot = dataset.pose(scans[k], settings_.pose);
+      Beam* out = beams.data() + first[k];
+      for (const Reading& r : scans[k].readings) {
+        if (r.time <= until) *out++ = beamOf(robot, r);
+      }
+    }
+  });
   return integrateBeams(beams, cancel);
 }
 
 namespace {
-
-// How often batch mapping looks at the cancel flag, in readings.
-constexpr std::size_t kCancelStride = 256;
-// Below this many readings a thread costs more than it saves.
-constexpr std::size_t kParallelMinimum = 4096;
-// Footprints computed ahead of the one being applied: enough to keep the workers busy, few enough
-// that their buffers stay in cache.
-constexpr std::size_t kSlots = 64;
-constexpr std::int64_t kEmptySlot = -1;
-constexpr std::int64_t kHaltedSlot = -2;
-// Set in the pipeline's count of applied footprints when the run stops.
-constexpr std::size_t kHalted = std::size_t{1} << (std::numeric_limits<std::size_t>::digits - 1);
-// A snapshot's layers are filled on one more thread per this many cells.
-constexpr std::size_t kSnapshotCellsPerThread = 32768;
-// The height of the stripes of rows the threads share out (integrateStripes).
-constexpr int kStripeRows = 8;
 
 // Waits until `value` differs from `old`. A footprint takes some 10 µs, so the wait is usually
 // over within a short spin; sleeping at once would cost a futex call and a wake-up per footprint
@@ -189,10 +214,12 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
     }
     return true;
   }
-  // Stripes of rows per thread, unless an observer must see whole footprints in order or the
-  // model's footprints are too cheap to be worth cutting up (HIMM's axis line): then the pipeline.
+  // Stripes of rows per thread, unless an observer must see whole footprints in order: then the
+  // pipeline. A model that does not rasterise by rows (HIMM's axis line) computes each whole
+  // footprint on every thread and keeps its rows: a line of cells costs less to trace twice than
+  // to hand from one core to another, reading by reading, through the pipeline.
   // No more threads than stripes: a thread without rows would read every beam for nothing.
-  if (!observer_ && model_->rasterisesRows()) {
+  if (!observer_) {
     const auto stripes =
         static_cast<unsigned>((grid_.spec().height + kStripeRows - 1) / kStripeRows);
     return integrateStripes(beams, cancel, std::max(1u, std::min(threads, stripes)));
@@ -326,10 +353,10 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
       }
     });
   } else {
-    // In step: thread k computes its part of footprint i, posts the part's total, and keeps the
-    // part in a ring of kSlots until every thread has posted i; then it applies it with the sum.
-    // Only the totals cross between cores. (A thread kSlots ahead waits; two threads cannot both
-    // wait, as each would have to be kSlots ahead of the other.)
+    // In step: thread k computes its part of footprint i, posts the part's total (kPostBatch at a
+    // time), and keeps the part in a ring of kSlots until every thread has posted i; then it
+    // applies it with the sum. Only the totals cross between cores. (A thread kSlots ahead waits;
+    // two threads cannot both wait, as each would have to be kSlots ahead of the other.)
     state = std::vector<Step>(rows.size());
     for (Step& b : state) b.partial.assign(n, 0);
     enum class Part { Ready, NotYet, Halted };
@@ -355,6 +382,7 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
       Step& mine = state[k];
       std::vector<Footprint> ring(kSlots);
       std::size_t applied = 0;
+      std::size_t computed = 0, published = 0;
       auto applyNext = [&] {
         FootprintTotals sum;
         for (const Step& b : state) sum.occupied += b.partial[applied];
@@ -363,9 +391,18 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
         markObserved(fp);
         ++applied;
       };
+      // Posts the totals computed since the last post: in batches of kPostBatch, and always before
+      // this thread waits for another (so two threads never wait for each other's unposted parts).
+      auto publish = [&] {
+        if (computed == published) return;
+        mine.posted.fetch_add(computed - published, std::memory_order_release);  // keeps kHalted
+        mine.posted.notify_all();
+        published = computed;
+      };
       for (std::size_t i = 0; i < n; ++i) {
         if (stopping(i)) return halt(applied);
         while (i >= applied + kSlots) {
+          publish();
           if (!waitPosted(applied)) return halt(applied);
           applyNext();
         }
@@ -373,14 +410,16 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
         fp.clear();
         model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
         mine.partial[i] = occupiedFixedPoint(fp);
-        mine.posted.fetch_add(1, std::memory_order_release);  // keeps kHalted
-        mine.posted.notify_all();
+        ++computed;
+        if (computed - published < kPostBatch) continue;
+        publish();
         // Apply what every thread has posted, without waiting.
         for (Part p = posted(applied); applied <= i && p != Part::NotYet; p = posted(applied)) {
           if (p == Part::Halted) return halt(applied);
           applyNext();
         }
       }
+      publish();
       while (applied < n) {
         if (!waitPosted(applied)) return halt(applied);
         applyNext();
@@ -402,6 +441,7 @@ OccupancyMap Mapper::snapshot() const {
   m.level.resize(n);
   m.filled.resize(n);
   m.observed.resize(n);
+  m.evidence.resize(n);
   grid_.copyObserved(0, n, m.observed.data());
   // Split between threads for large grids: a 5 cm grid of a room and its ghosts is 200 000 cells
   // and this is on the path from a slider to the picture.

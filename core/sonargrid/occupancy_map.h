@@ -22,6 +22,11 @@ struct OccupancyMap {
   std::vector<std::uint8_t> level;     // 0..15, monotonic in the rule's value
   std::vector<std::uint8_t> filled;    // 1 where occupied evidence beats free evidence
   std::vector<std::uint8_t> observed;  // 1 where at least one reading wrote the cell
+  // The rule's own certainty that the cell is occupied, in [0, 1]: HIMM CV / CVmax, addition Occ,
+  // Dempster–Shafer m(occ), a probabilistic rule max(0, 2p − 1). What IOP's evidence weight reads
+  // (docs/metrics.md). Empty for a map that carries no rule's evidence (unobserved(), a map read
+  // from a ROS map): its level stands in.
+  std::vector<double> evidence;
 
   // A map of `spec` where nothing was observed: p 0.5, level 8, nothing filled.
   static OccupancyMap unobserved(const GridSpec& spec);

@@ -21,7 +21,7 @@ struct PresetValue {
 
 struct Preset {
   std::string name;   // stable key, e.g. "paper002-table1-mean-vsdns"
-  std::string title;  // for menus, e.g. "Paper 002 Table 1: optimum by mean VSDNS"
+  std::string title;  // for menus, by authors: "Arafat et al. Table 1: optimum by mean VSDNS"
   std::string model;  // registry names
   std::string rule;
   std::string source;  // why this model and rule: the paper and section

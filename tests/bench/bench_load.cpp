@@ -17,13 +17,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <numbers>
 #include <string>
 
 #include "sonargrid/io/carmen.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/mapper.h"
+#include "sonargrid/sim/benchmark_workload.h"
 
 namespace {
 
@@ -36,42 +36,6 @@ long statusKb(const char* key) {
     if (line.rfind(prefix, 0) == 0) return std::strtol(line.c_str() + prefix.size(), nullptr, 10);
   }
   return -1;
-}
-
-// Distance from p along heading a to the walls of the room [0, 10] x [0, 8].
-double toWall(const sg::Pose2D& p) {
-  const double c = std::cos(p.heading), s = std::sin(p.heading);
-  double t = 1e9;
-  if (c > 1e-9) t = std::min(t, (10.0 - p.x()) / c);
-  if (c < -1e-9) t = std::min(t, -p.x() / c);
-  if (s > 1e-9) t = std::min(t, (8.0 - p.y()) / s);
-  if (s < -1e-9) t = std::min(t, -p.y() / s);
-  return t;
-}
-
-sg::Dataset makeLog(std::size_t readings) {
-  sg::Dataset d;
-  d.name = "bench_load";
-  d.ring = sg::SonarRing::pioneer3dx();
-  const std::size_t sonars = d.ring.size();
-  const std::size_t scans = readings / sonars;
-  d.scans.reserve(scans);
-  for (std::size_t k = 0; k < scans; ++k) {
-    const double t = 0.1 * static_cast<double>(k);
-    const double a = 2.0 * std::numbers::pi * static_cast<double>(k % 600) / 600.0;
-    sg::Scan& s = d.scans.emplace_back();
-    s.time = t;
-    s.odometry = sg::Pose2D(5.0 + 3.0 * std::cos(a), 4.0 + 2.5 * std::sin(a),
-                            sg::wrapAngle(a + std::numbers::pi / 2));
-    s.truth = s.odometry;
-    s.readings.reserve(sonars);
-    for (std::size_t i = 0; i < sonars; ++i) {
-      const double r = toWall(s.odometry.compose(d.ring.sonars[i].pose));
-      s.readings.push_back(sg::Reading{static_cast<std::uint16_t>(i),
-                                       r < d.ring.maxRange ? r : sg::Reading::kNoEcho, t});
-    }
-  }
-  return d;
 }
 
 // The Dataset's heap and inline bytes, from its vectors' capacities.
@@ -148,7 +112,7 @@ int main(int argc, char** argv) {
   const std::string sglog = stem + ".sglog";
   const std::string carmen = stem + ".clf";
   bool ok = inChild([&] {
-    const sg::Dataset d = makeLog(readings);
+    const sg::Dataset d = sg::workload::roomLoopLog(readings);
     sg::writeSglog(d, sglog);
     sg::writeCarmen(d, carmen);
   });

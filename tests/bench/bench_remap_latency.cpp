@@ -2,7 +2,7 @@
 // Slider-change -> repainted-view latency (issue 5, item 10). Not run by ctest.
 //
 //   bench_remap_latency LOG [--model M] [--rule R] [--param NAME] [--steps N] [--pose odom|truth]
-//                       [--cell METRES] [--controller] [--probe N]
+//                       [--cell METRES] [--controller] [--probe N] [--reference REF] [--metrics]
 //
 // By default it opens LOG in the app's MainWindow (parameter panel, beam view and all), sets the
 // panel's slider of NAME (default: the model's first parameter) to N positions across its range
@@ -11,6 +11,10 @@
 // repaint showing that value at all (the window previews a slow log's change on coarser cells).
 // --controller drives a bare RemapController + GridView instead (no panel, no window), to tell the
 // GUI's share apart.
+//
+// --metrics (window only) also waits, at each step, for the metrics panel to show the numbers of
+// that step's full map (IOP and the rest with --reference REF, goodness without), and reports the
+// time from the change to the panel's refresh and the panel's own computation time.
 //
 // --probe N then re-maps N more times (default 0) while a 16 ms timer on the GUI thread (1) records
 // how late it fires, (2) posts a mouse move over the grid view and times it until the hover
@@ -37,6 +41,7 @@
 
 #include "grid_view.h"
 #include "main_window.h"
+#include "metrics_panel.h"
 #include "parameter_panel.h"
 #include "remap_controller.h"
 #include "sonargrid/io/sglog.h"
@@ -139,7 +144,8 @@ int main(int argc, char** argv) {
   };
   if (args.size() < 2 || args[1].startsWith("--")) {
     std::cerr << "usage: bench_remap_latency LOG [--model M] [--rule R] [--param NAME] "
-                 "[--steps N] [--pose odom|truth] [--cell METRES] [--controller] [--probe N]\n";
+                 "[--steps N] [--pose odom|truth] [--cell METRES] [--controller] [--probe N] "
+                 "[--reference REF] [--metrics]\n";
     return 2;
   }
   try {
@@ -161,6 +167,10 @@ int main(int argc, char** argv) {
     const int probes = std::max(0, option("--probe", "0").toInt());
     const double cell = option("--cell", "0.05").toDouble();
     const bool bare = args.contains("--controller");
+    const bool metrics = args.contains("--metrics");
+    const QString referencePath = option("--reference", QString());
+    if (bare && (metrics || !referencePath.isEmpty()))
+      throw std::runtime_error("--metrics and --reference need the window (not --controller)");
 
     // The machine's speed now: one thread re-mapping the log with the default parameters, best of
     // three. A shared VM runs at very different speeds from one minute to the next; this line lets
@@ -201,6 +211,8 @@ int main(int argc, char** argv) {
       window->resize(1280, 800);
       window->setCellSize(cell);
       window->setMapperSettings(settings);
+      if (!referencePath.isEmpty() && !window->openReference(referencePath, true))
+        throw std::runtime_error("cannot read the reference");
       window->show();
       view = window->gridView();
       remap = window->remapController();
@@ -254,6 +266,17 @@ int main(int argc, char** argv) {
     else if (!window->openLog(args[1], true))
       return 2;
     waitForNewest(remap->latestGeneration());  // warm-up: first map, view fitted
+    sg::ui::MetricsPanel* panel = window ? window->findChild<sg::ui::MetricsPanel*>() : nullptr;
+    // The panel shows the numbers of the newest full map: nothing scheduled or running, and the
+    // result shown is that of its newest request (made when that map arrived).
+    auto waitForMetrics = [&] {
+      while (panel->busy() || panel->shownGeneration() != panel->generation())
+        QCoreApplication::processEvents(QEventLoop::WaitForMoreEvents);
+    };
+    if (metrics) {
+      if (!panel) throw std::runtime_error("the window has no metrics panel");
+      waitForMetrics();
+    }
 
     // Slider positions (panel) or values (bare) across the range.
     auto change = [&](int i) {
@@ -267,7 +290,7 @@ int main(int argc, char** argv) {
         remap->setSettings(settings);
       }
     };
-    std::vector<double> ms, remapMs, handling, drawing, delivered, first;
+    std::vector<double> ms, remapMs, handling, drawing, delivered, first, panelMs, computeMs;
     const auto timing =
         QObject::connect(remap, &sg::ui::RemapController::mapped,
                          [&](auto, double t, quint64, bool) { remapMs.push_back(t); });
@@ -287,6 +310,11 @@ int main(int argc, char** argv) {
       first.push_back(firstShownMs);
       drawing.push_back(mappedToShown);
       delivered.push_back(ms.back() - mappedToShown);
+      if (metrics) {
+        waitForMetrics();
+        panelMs.push_back(static_cast<double>(clock.nsecsElapsed()) * 1e-6);
+        if (panel->result()) computeMs.push_back(panel->result()->elapsedMs);
+      }
     }
     QObject::disconnect(timing);
     const auto grid = view->map()->spec;
@@ -302,6 +330,10 @@ int main(int argc, char** argv) {
               << summarise(remapMs) << "\n  change -> map delivered on the GUI thread "
               << summarise(delivered) << "\n  GUI thread: the change itself " << summarise(handling)
               << "\n  GUI thread: map delivered -> repainted " << summarise(drawing) << '\n';
+    if (metrics)
+      std::cout << "  metrics panel (" << (referencePath.isEmpty() ? "goodness" : "reference")
+                << "): change -> panel refreshed " << summarise(panelMs)
+                << "\n  metrics panel: its computation alone " << summarise(computeMs) << '\n';
 
     if (probes > 0) {
       QElapsedTimer idle;

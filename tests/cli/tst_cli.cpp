@@ -24,9 +24,11 @@
 #include <cmath>
 #include <vector>
 
+#include "cli_run.h"
+
 namespace {
 
-const QString kCli = QStringLiteral(SONARGRID_CLI);
+using cli_test::kCli;
 const QString kRoomLog = QStringLiteral(SONARGRID_DATASETS "/room/room.sglog");
 
 // The keys `map --json` prints, no more and no fewer (docs/cli.md).
@@ -35,45 +37,9 @@ const QStringList kMapKeys = {"model",    "rule",         "params",       "grid"
 const QStringList kGridKeys = {"width", "height", "cell_m", "origin"};
 const QStringList kParameterKeys = {"name", "symbol", "unit", "min", "max", "default", "source"};
 
-struct Run {
-  bool finished = false;
-  QProcess::ExitStatus status = QProcess::CrashExit;
-  int code = -1;
-  QByteArray out;
-  QByteArray err;
-};
-
-// Runs the CLI; never waits more than a minute.
-Run runCli(const QStringList& args, const QString& workDir = {}) {
-  QProcess p;
-  p.setProgram(kCli);
-  p.setArguments(args);
-  if (!workDir.isEmpty()) p.setWorkingDirectory(workDir);
-  p.start();
-  Run r;
-  if (!p.waitForStarted(10000)) {
-    r.err = "did not start: " + p.errorString().toUtf8();
-    return r;
-  }
-  r.finished = p.waitForFinished(60000);
-  if (!r.finished) {
-    p.kill();
-    p.waitForFinished(5000);
-    r.err = "timed out after 60 s";
-    return r;
-  }
-  r.status = p.exitStatus();
-  r.code = p.exitCode();
-  r.out = p.readAllStandardOutput();
-  r.err = p.readAllStandardError();
-  return r;
-}
-
-QByteArray describe(const QStringList& args, const Run& r) {
-  return "sonargrid-cli " + args.join(' ').toUtf8() + "\n  exit " + QByteArray::number(r.code) +
-         (r.status == QProcess::CrashExit ? " (crashed)" : "") + "\n  stdout: " + r.out.left(400) +
-         "\n  stderr: " + r.err.left(400);
-}
+using cli_test::describe;
+using cli_test::Run;
+using cli_test::runCli;
 
 bool isWholeNumber(const QJsonValue& v) {
   return v.isDouble() && v.toDouble() >= 0 && v.toDouble() == std::floor(v.toDouble());

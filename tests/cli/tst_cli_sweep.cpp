@@ -19,50 +19,23 @@
 #include <QThread>
 #include <QtTest>
 
+#include "cli_run.h"
+
 namespace {
 
-const QString kCli = QStringLiteral(SONARGRID_CLI);
+using cli_test::kCli;
 const QString kRun1 = QStringLiteral(SONARGRID_DATASETS "/arafat-room/run-1.sglog");
 const QString kRun2 = QStringLiteral(SONARGRID_DATASETS "/arafat-room/run-2.sglog");
 const QString kWorld = QStringLiteral(SONARGRID_DATASETS "/arafat-room/world.json");
 
-struct Run {
-  bool finished = false;
-  QProcess::ExitStatus status = QProcess::CrashExit;
-  int code = -1;
-  QByteArray out;
-  QByteArray err;
-};
+using cli_test::describe;
+using cli_test::Run;
 
+// The CLI without the test-only per-set delay, whatever the test's environment says.
 Run runCli(const QStringList& args) {
-  QProcess p;
   QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
   env.remove("SONARGRID_TEST_SET_DELAY_MS");
-  p.setProcessEnvironment(env);
-  p.start(kCli, args);
-  Run r;
-  if (!p.waitForStarted(10000)) {
-    r.err = "did not start: " + p.errorString().toUtf8();
-    return r;
-  }
-  r.finished = p.waitForFinished(120000);
-  if (!r.finished) {
-    p.kill();
-    p.waitForFinished(5000);
-    r.err = "timed out after 120 s";
-    return r;
-  }
-  r.status = p.exitStatus();
-  r.code = p.exitCode();
-  r.out = p.readAllStandardOutput();
-  r.err = p.readAllStandardError();
-  return r;
-}
-
-QByteArray describe(const QStringList& args, const Run& r) {
-  return "sonargrid-cli " + args.join(' ').toUtf8() + "\n  exit " + QByteArray::number(r.code) +
-         (r.status == QProcess::CrashExit ? " (crashed)" : "") + "\n  stdout: " + r.out.left(600) +
-         "\n  stderr: " + r.err.left(600);
+  return cli_test::runProgram(cli_test::kCli, args, {}, env);
 }
 
 QByteArray readFile(const QString& path) {

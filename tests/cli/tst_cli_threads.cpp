@@ -17,18 +17,15 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include "cli_run.h"
+
 namespace {
 
-const QString kCli = QStringLiteral(SONARGRID_CLI);
+using cli_test::kCli;
 const QString kRoomLog = QStringLiteral(SONARGRID_DATASETS "/room/room.sglog");
 
-struct Run {
-  bool finished = false;
-  QProcess::ExitStatus status = QProcess::CrashExit;
-  int code = -1;
-  QByteArray out;
-  QByteArray err;
-};
+using cli_test::describe;
+using cli_test::Run;
 
 // Runs the CLI with SONARGRID_THREADS set to `threadsVariable` (unset when null, whatever the
 // environment of the test says); never waits more than two minutes.
@@ -37,32 +34,7 @@ Run runCli(const QStringList& args, const QByteArray& threadsVariable = {}) {
   env.remove("SONARGRID_THREADS");
   if (!threadsVariable.isNull())
     env.insert("SONARGRID_THREADS", QString::fromUtf8(threadsVariable));
-  QProcess p;
-  p.setProcessEnvironment(env);
-  p.start(kCli, args);
-  Run r;
-  if (!p.waitForStarted(10000)) {
-    r.err = "did not start: " + p.errorString().toUtf8();
-    return r;
-  }
-  r.finished = p.waitForFinished(120000);
-  if (!r.finished) {
-    p.kill();
-    p.waitForFinished(5000);
-    r.err = "timed out after 120 s";
-    return r;
-  }
-  r.status = p.exitStatus();
-  r.code = p.exitCode();
-  r.out = p.readAllStandardOutput();
-  r.err = p.readAllStandardError();
-  return r;
-}
-
-QByteArray describe(const QStringList& args, const Run& r) {
-  return "sonargrid-cli " + args.join(' ').toUtf8() + "\n  exit " + QByteArray::number(r.code) +
-         (r.status == QProcess::CrashExit ? " (crashed)" : "") + "\n  stdout: " + r.out.left(400) +
-         "\n  stderr: " + r.err.left(400);
+  return cli_test::runProgram(cli_test::kCli, args, {}, env);
 }
 
 QByteArray readFile(const QString& path) {

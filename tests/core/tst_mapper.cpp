@@ -250,11 +250,11 @@ void TstMapper::cancelStripes() {
 
 void TstMapper::stripesForEveryRuleKind_data() {
   // The three ways a large log is mapped on several threads, each bit-identical to one thread
-  // scan by scan, at any thread count (the policy's, concurrency.h): stripes of rows (Bayes),
-  // stripes in step sharing each footprint's total (addition with normalisation, which scales a
-  // footprint by its sum), and, for HIMM's axis line (too cheap to cut into rows) or with an
-  // observer, the ordered pipeline. 3 threads do not divide the rows evenly; 8 are more than this
-  // machine may have.
+  // scan by scan, at any thread count (the policy's, concurrency.h): stripes of rows (Bayes; HIMM's
+  // axis line, each thread tracing every line and keeping its rows), stripes in step sharing each
+  // footprint's total (addition with normalisation, which scales a footprint by its sum), and, with
+  // an observer, the ordered pipeline. 3 threads do not divide the rows evenly; 8 are more than
+  // this machine may have.
   QTest::addColumn<QString>("model");
   QTest::addColumn<QString>("rule");
   QTest::addColumn<double>("normalise");  // < 0: the rule has no such parameter

@@ -25,6 +25,7 @@
 #include "sonargrid/metrics/seeded_random.h"
 #include "sonargrid/reference/actual_position_grid.h"
 #include "sonargrid/reference/reference_json.h"
+#include "sonargrid/rules/rule_classes.h"
 
 namespace {
 
@@ -113,6 +114,10 @@ class TstMetrics : public QObject {
   void iopByHand_data();
   void iopByHand();
   void iopIgnoresUnfilledAndNeedsAnApg();
+  void iopWeights_data();
+  void iopWeights();
+  void ruleEvidence();
+  void snapshotCarriesEvidence();
   void distanceTransformIsExact();
   void iopIsInsensitiveToCellSize_data();
   void iopIsInsensitiveToCellSize();
@@ -130,7 +135,13 @@ class TstMetrics : public QObject {
   void scoreOfAPerfectMap();
   void scoreRestrictsMetrics();
   void scoreRejectsADisjointReference();
+  void scoreOnACellMask_data();
+  void scoreOnACellMask();
   void scoreOfTheRoomDataset();
+  void commonObservedCells_data();
+  void commonObservedCells();
+  void scoreOnACellMask();
+  void scoreWarnsWhenNoReferenceEdgeWasObserved();
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -206,6 +217,119 @@ void TstMetrics::iopIgnoresUnfilledAndNeedsAnApg() {
   sg::ActualPositionGrid other =
       apgOfSegment(grid(10, 6), sg::Position(0.05, 0.05), sg::Position(0.05, 0.45));
   QVERIFY_THROWS_EXCEPTION(std::invalid_argument, sg::indexOfPerformance(map, other));
+}
+
+void TstMetrics::iopWeights_data() {
+  // A wall along column 0 of a 10 x 5 grid of 10 cm cells (APG column 0). Cell A = (0, 2), on the
+  // wall, and cell B = (3, 2), 3 cells (300 mm) off it, both filled. Columns: A's and B's level
+  // and evidence, the weight, the filled threshold, the IOP in mm and the cells counted.
+  QTest::addColumn<int>("levelA");
+  QTest::addColumn<double>("evidenceA");
+  QTest::addColumn<int>("levelB");
+  QTest::addColumn<double>("evidenceB");
+  QTest::addColumn<QString>("weight");
+  QTest::addColumn<double>("threshold");
+  QTest::addColumn<double>("iopMm");
+  QTest::addColumn<int>("counted");
+  // Addition: A Occ 1 (p 1, level 15), B a faint outlier Occ 0.2 (p 0.6, level round(9) = 9).
+  // Level: (0·15 + 300·9) / (15 + 9) = 112.5. Evidence: weights 15·1 and 15·0.2 = 3:
+  // (0·15 + 300·3) / 18 = 50.
+  QTest::newRow("addition, level") << 15 << 1.0 << 9 << 0.2 << "level" << 0.0 << 112.5 << 2;
+  QTest::newRow("addition, evidence") << 15 << 1.0 << 9 << 0.2 << "evidence" << 0.0 << 50.0 << 2;
+  // Threshold 5 leaves B out under evidence (3 < 5): A alone, 0 mm; under level B stays (9 ≥ 5).
+  QTest::newRow("evidence, threshold 5") << 15 << 1.0 << 9 << 0.2 << "evidence" << 5.0 << 0.0 << 1;
+  QTest::newRow("level, threshold 5") << 15 << 1.0 << 9 << 0.2 << "level" << 5.0 << 112.5 << 2;
+  // A threshold equal to a weight keeps the cell ("at least"): B's level 9 with threshold 9.
+  QTest::newRow("level, threshold 9") << 15 << 1.0 << 9 << 0.2 << "level" << 9.0 << 112.5 << 2;
+  QTest::newRow("level, threshold 10") << 15 << 1.0 << 9 << 0.2 << "level" << 10.0 << 0.0 << 1;
+  // Bayes: A p 0.9 (level round(13.5) = 14, evidence 2·0.9 − 1 = 0.8 → 12), B p 0.6 (level 9,
+  // evidence 0.2 → 3). Level: 300·9 / 23 = 117.391; evidence: 300·3 / 15 = 60.
+  QTest::newRow("bayes, level") << 14 << 0.8 << 9 << 0.2 << "level" << 0.0 << 2700.0 / 23.0 << 2;
+  QTest::newRow("bayes, evidence") << 14 << 0.8 << 9 << 0.2 << "evidence" << 0.0 << 60.0 << 2;
+  // HIMM: CV 12 and 3; level and evidence (CV / 15) weigh the same: 300·3 / 15 = 60.
+  QTest::newRow("himm, level") << 12 << 0.8 << 3 << 0.2 << "level" << 0.0 << 60.0 << 2;
+  QTest::newRow("himm, evidence") << 12 << 0.8 << 3 << 0.2 << "evidence" << 0.0 << 60.0 << 2;
+}
+
+void TstMetrics::iopWeights() {
+  QFETCH(int, levelA);
+  QFETCH(double, evidenceA);
+  QFETCH(int, levelB);
+  QFETCH(double, evidenceB);
+  QFETCH(QString, weight);
+  QFETCH(double, threshold);
+  QFETCH(double, iopMm);
+  QFETCH(int, counted);
+  const sg::GridSpec spec = grid(10, 5);
+  sg::OccupancyMap map = blankMap(spec);
+  map.evidence.assign(spec.cellCount(), 0.0);
+  const std::size_t a = spec.linear(sg::CellIndex(0, 2)), b = spec.linear(sg::CellIndex(3, 2));
+  map.level[a] = static_cast<std::uint8_t>(levelA);
+  map.level[b] = static_cast<std::uint8_t>(levelB);
+  map.evidence[a] = evidenceA;
+  map.evidence[b] = evidenceB;
+  map.filled[a] = map.filled[b] = 1;
+  map.observed[a] = map.observed[b] = 1;
+  sg::IopOptions options;
+  QVERIFY(sg::parseIopWeight(weight.toStdString(), options.weight));
+  options.filledThreshold = threshold;
+  const sg::IndexOfPerformance iop = sg::indexOfPerformance(
+      map, apgOfSegment(spec, sg::Position(0.05, 0.05), sg::Position(0.05, 0.45)), options);
+  compareOptional(iop.mm, iopMm, 1e-9, "IOP");
+  QCOMPARE(iop.filledCells, static_cast<std::size_t>(counted));
+  QCOMPARE(QString(sg::iopWeightName(options.weight)), weight);
+
+  // Without an evidence layer (a map read from a ROS map) the evidence weight is the level.
+  map.evidence.clear();
+  options.weight = sg::IopWeight::Evidence;
+  options.filledThreshold = 0.0;
+  const double byLevel = 300.0 * levelB / (levelA + levelB);
+  compareOptional(
+      sg::indexOfPerformance(
+          map, apgOfSegment(spec, sg::Position(0.05, 0.05), sg::Position(0.05, 0.45)), options)
+          .mm,
+      byLevel, 1e-9, "IOP without evidence");
+}
+
+void TstMetrics::ruleEvidence() {
+  // Each rule's certainty of occupancy (docs/metrics.md, "IOP weights"), from its cell values.
+  sg::AdditionRule addition;
+  addition.configure(sg::defaultParameters("hpf", "addition"));
+  // Addition: Occ itself (paper 000 eq 7), whatever Emp is.
+  QCOMPARE(addition.evidenceOf(sg::EmptyEvidence{0.1}, sg::OccupiedEvidence{0.6}), 0.6);
+  QCOMPARE(addition.evidenceOf(sg::EmptyEvidence{0.0}, sg::OccupiedEvidence{0.2}), 0.2);
+  sg::BayesRule bayes(sg::BayesRule::Input::Evidence);
+  // Probabilistic: 2p − 1 above 0.5, 0 below: p 0.8 → 0.6; p 0.3 → 0.
+  QVERIFY(std::abs(bayes.evidenceOf(sg::BayesCell{0.8}) - 0.6) < 1e-15);
+  QCOMPARE(bayes.evidenceOf(sg::BayesCell{0.3}), 0.0);
+  sg::HimmRule himm;
+  himm.configure(sg::defaultParameters("himm", "himm"));
+  // HIMM: CV / 15, so 15 × evidence is the CV: CV 9 → 0.6.
+  QCOMPARE(himm.evidenceOf(sg::HimmCell{9}), 9.0 / 15.0);
+  // Dempster–Shafer: m(occ); m(occ) 0.7, m(emp) 0.1 → 0.7 (its p is 0.8, 2p − 1 would say 0.6).
+  sg::DempsterShaferRule ds;
+  QCOMPARE(ds.evidenceOf(sg::DempsterShaferCell{0.7, 0.1}), 0.7);
+}
+
+void TstMetrics::snapshotCarriesEvidence() {
+  // A mapped snapshot fills the evidence layer with the rule's own values: for addition a filled
+  // cell's evidence is its Occ, which is also its native value (eq 7: Occ when Occ ≥ Emp).
+  const sg::Dataset data = sg::readSglog(SONARGRID_DATASETS "/room/room.sglog");
+  sg::MapperSettings settings;
+  settings.model = "hpf";
+  settings.rule = "addition";
+  settings.parameters = sg::defaultParameters("hpf", "addition");
+  sg::Mapper mapper(data.ring, data.fittingGrid(sg::PoseSource::Odometry, 0.1), settings);
+  mapper.mapDataset(data, 20.0);
+  const sg::OccupancyMap map = mapper.snapshot();
+  QCOMPARE(map.evidence.size(), map.spec.cellCount());
+  std::size_t filled = 0;
+  for (std::size_t i = 0; i < map.spec.cellCount(); ++i) {
+    if (map.filled[i] == 0) continue;
+    ++filled;
+    QCOMPARE(map.evidence[i], map.native[i]);
+  }
+  QVERIFY(filled > 0);
 }
 
 void TstMetrics::distanceTransformIsExact() {
@@ -661,6 +785,49 @@ void TstMetrics::scoreRejectsADisjointReference() {
                            sg::scoreAgainstReference(blankMap(grid(10, 10)), ref));
 }
 
+void TstMetrics::scoreOnACellMask_data() {
+  // The map of scoreRestrictsMetrics: 3 x 5 cells of 10 cm, a wall on column 0 (APG and map p = 1,
+  // CV 15), one spurious cell (1, 2) with p 0.9 (CV 14, one cell off the wall), p = 0 elsewhere;
+  // every cell is known to the ideal map. The mask lists the 15 cells in linear order (iy = 0
+  // first, three per row).
+  QTest::addColumn<QString>("mask");
+  QTest::addColumn<double>("iopMm");
+  QTest::addColumn<double>("mapScorePct");
+  QTest::addColumn<int>("cells");
+  // Empty mask: every cell. IOP 100·14 / (5·15 + 14); map score 100 · 0.9² / 15 = 5.4 %.
+  QTest::newRow("no mask") << "" << 1400.0 / 89.0 << 5.4 << 15;
+  // Without (1, 2): only the wall is filled (IOP 0) and every scored cell is exact (score 0).
+  QTest::newRow("all but the spurious cell") << "111 111 101 111 111" << 0.0 << 0.0 << 14;
+  // Only (1, 2) and (2, 2): IOP 100·14 / 14 = 100 mm; map score 100 · (0.81 + 0) / 2 = 40.5 %.
+  QTest::newRow("the spurious row's free cells") << "000 000 011 000 000" << 100.0 << 40.5 << 2;
+  // Wall rows 0 and 1 and the whole of column 2: 2 + 5 cells, all exact.
+  QTest::newRow("two wall cells and column 2") << "101 101 001 001 001" << 0.0 << 0.0 << 7;
+  // Nothing: no filled cell (IOP undefined) and no evaluated cell (map score undefined).
+  QTest::newRow("no cell") << "000 000 000 000 000" << kNaN << kNaN << 0;
+}
+
+void TstMetrics::scoreOnACellMask() {
+  QFETCH(QString, mask);
+  QFETCH(double, iopMm);
+  QFETCH(double, mapScorePct);
+  QFETCH(int, cells);
+  const char* json = R"({"format": "sonargrid-reference", "version": 1, "units": "m", "objects": [
+      {"name": "wall", "closed": false, "corners": [[0.05, 0.05], [0.05, 0.45]]}]})";
+  const sg::ReferenceMap ref = sg::parseReferenceJson(json, "wall.json");
+  const sg::OccupancyMap map = mapOf(grid(3, 5), "1 0 0 1 0 0 1 0.9 0 1 0 0 1 0 0");
+  sg::ScoreOptions options;
+  options.metrics = sg::parseMetricList("iop,map_score");
+  for (QChar c : mask)
+    if (c != ' ') options.cellMask.push_back(c == '1' ? 1 : 0);
+  const sg::ReferenceScore s = sg::scoreAgainstReference(map, ref, options);
+  compareOptional(s.value(sg::Metric::Iop), iopMm, 1e-9, "IOP");
+  compareOptional(s.value(sg::Metric::MapScore), mapScorePct, 1e-9, "map score");
+  QCOMPARE(s.cellsEvaluated, static_cast<std::size_t>(cells));
+  // A mask of another grid's size is refused.
+  options.cellMask.assign(14, 1);
+  QVERIFY_THROWS_EXCEPTION(std::invalid_argument, sg::scoreAgainstReference(map, ref, options));
+}
+
 void TstMetrics::scoreOfTheRoomDataset() {
   // End to end on the bundled room: the numbers are printed for the record (docs/metrics.md quotes
   // them); the test only asks that they are defined and plausible.
@@ -685,6 +852,95 @@ void TstMetrics::scoreOfTheRoomDataset() {
     QVERIFY(s.cellsEvaluated > 1000);
     QCOMPARE(s.paths.pairs, std::size_t{sg::kDefaultPathPairs});
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scoring several maps on the same cells
+
+void TstMetrics::commonObservedCells_data() {
+  // Observed layers of 1 x 4 maps as "1101" strings, and the cells all of them observed.
+  QTest::addColumn<QStringList>("observed");
+  QTest::addColumn<QString>("common");
+  QTest::newRow("one map") << QStringList{"1101"} << "1101";
+  QTest::newRow("two maps") << QStringList{"1101", "0111"} << "0101";
+  QTest::newRow("three maps") << QStringList{"1111", "0111", "1110"} << "0110";
+  QTest::newRow("nothing shared") << QStringList{"1100", "0011"} << "0000";
+}
+
+void TstMetrics::commonObservedCells() {
+  QFETCH(QStringList, observed);
+  QFETCH(QString, common);
+  std::vector<sg::OccupancyMap> maps;
+  for (const QString& o : observed) {
+    sg::OccupancyMap m = blankMap(grid(4, 1));
+    for (int k = 0; k < 4; ++k) m.observed[static_cast<std::size_t>(k)] = o[k] == '1' ? 1 : 0;
+    maps.push_back(m);
+  }
+  std::vector<const sg::OccupancyMap*> pointers;
+  for (const sg::OccupancyMap& m : maps) pointers.push_back(&m);
+  const std::vector<std::uint8_t> mask = sg::commonObservedCells(pointers);
+  QString got;
+  for (std::uint8_t c : mask) got += c ? '1' : '0';
+  QCOMPARE(got, common);
+
+  const sg::OccupancyMap other = blankMap(grid(5, 1));
+  pointers.push_back(&other);
+  QVERIFY_THROWS_EXCEPTION(std::invalid_argument, sg::commonObservedCells(pointers));
+  QVERIFY_THROWS_EXCEPTION(std::invalid_argument, sg::commonObservedCells({}));
+}
+
+void TstMetrics::scoreOnACellMask() {
+  // The map of scoreRestrictsMetrics: a wall along column 0 of a 3 x 5 grid, p 1 on it, p 0.9 at
+  // (1, 2), 0 elsewhere, all observed.
+  const char* json = R"({"format": "sonargrid-reference", "version": 1, "units": "m", "objects": [
+      {"name": "wall", "closed": false, "corners": [[0.05, 0.05], [0.05, 0.45]]}]})";
+  const sg::ReferenceMap ref = sg::parseReferenceJson(json, "wall.json");
+  const sg::OccupancyMap map = mapOf(grid(3, 5), "1 0 0 1 0 0 1 0.9 0 1 0 0 1 0 0");
+  sg::ScoreOptions options;
+  options.metrics = sg::parseMetricList("iop,precision");
+  options.iop.weight = sg::IopWeight::Level;
+  // Every cell (empty mask): 100·14 / (5·15 + 14) = 15.73 mm over 15 cells; precision 5 / 6.
+  sg::ReferenceScore s = sg::scoreAgainstReference(map, ref, options);
+  QCOMPARE(s.cellsEvaluated, std::size_t{15});
+  compareOptional(s.value(sg::Metric::Iop), 1400.0 / 89.0, 1e-9, "IOP, every cell");
+  compareOptional(s.value(sg::Metric::Precision), 5.0 / 6.0, 1e-12, "precision, every cell");
+  // Leave out (1, 2), linear 7: the wall alone, IOP 0, precision 5 / 5, 14 cells.
+  options.cellMask.assign(15, 1);
+  options.cellMask[7] = 0;
+  s = sg::scoreAgainstReference(map, ref, options);
+  QCOMPARE(s.cellsEvaluated, std::size_t{14});
+  compareOptional(s.value(sg::Metric::Iop), 0.0, 1e-12, "IOP, masked");
+  compareOptional(s.value(sg::Metric::Precision), 1.0, 1e-12, "precision, masked");
+  // Only column 2 (linear 2, 5, 8, 11, 14): no filled cell, IOP undefined; 5 cells evaluated.
+  options.cellMask.assign(15, 0);
+  for (int i : {2, 5, 8, 11, 14}) options.cellMask[static_cast<std::size_t>(i)] = 1;
+  s = sg::scoreAgainstReference(map, ref, options);
+  QCOMPARE(s.cellsEvaluated, std::size_t{5});
+  QVERIFY(!s.value(sg::Metric::Iop).has_value());
+  // A mask of another size is an error.
+  options.cellMask.assign(14, 1);
+  QVERIFY_THROWS_EXCEPTION(std::invalid_argument, sg::scoreAgainstReference(map, ref, options));
+}
+
+void TstMetrics::scoreWarnsWhenNoReferenceEdgeWasObserved() {
+  // A wall along column 0 of a 10 x 10 grid; the map observed only cell (9, 9), far from it.
+  const char* json = R"({"format": "sonargrid-reference", "version": 1, "units": "m", "objects": [
+      {"name": "wall", "closed": false, "corners": [[0.05, 0.05], [0.05, 0.95]]}]})";
+  const sg::ReferenceMap ref = sg::parseReferenceJson(json, "wall.json");
+  sg::OccupancyMap map = blankMap(grid(10, 10));
+  map.observed[99] = 1;
+  map.probability[99] = 0.0;
+  map.level[99] = 0;
+  sg::ReferenceScore s = sg::scoreAgainstReference(map, ref);
+  QCOMPARE(s.apgCells, std::size_t{10});
+  QCOMPARE(s.apgCellsObserved, std::size_t{0});
+  QCOMPARE(s.warnings.size(), std::size_t{1});
+  QVERIFY(s.warnings.front().find("none of the 10 cells") != std::string::npos);
+  // Observing one cell of the wall, (0, 4): no warning.
+  map.observed[40] = 1;
+  s = sg::scoreAgainstReference(map, ref);
+  QCOMPARE(s.apgCellsObserved, std::size_t{1});
+  QVERIFY(s.warnings.empty());
 }
 
 QTEST_GUILESS_MAIN(TstMetrics)

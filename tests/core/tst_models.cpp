@@ -8,6 +8,7 @@
 
 #include "sonargrid/models/cone_raster.h"
 #include "sonargrid/models/sensor_model.h"
+#include "sonargrid/rules/update_rule.h"
 
 using namespace sg;
 
@@ -43,6 +44,8 @@ class TstModels : public QObject {
   void footprintRowsAreItsRows();
   void reachBoundsTheFootprint();
   void declarationsAreComplete();
+  void preferredRulesArePapersPairings_data();
+  void preferredRulesArePapersPairings();
 };
 
 // Columns: delta (m), theta (deg), range (m or inf), expected region, pE, pO, P(occ).
@@ -419,6 +422,49 @@ void TstModels::declarationsAreComplete() {
       QVERIFY(!s.source.empty() && !s.symbol.empty());
     }
   }
+}
+
+void TstModels::preferredRulesArePapersPairings_data() {
+  QTest::addColumn<QString>("model");
+  QTest::addColumn<QString>("rule");
+  QTest::addColumn<QString>("occupied");
+  QTest::addColumn<QString>("beyond");
+  // Paper 000 §2.1 eqs 7–8 (HPF, probability addition) and §2.2 (HIMM, its histogram); paper 001
+  // §5.1 (models compared on the log update); paper 002 §3.3–§4 (recursive Bayes; its Figure 1
+  // names Regions I, II and III).
+  QTest::newRow("himm") << "himm"
+                        << "himm"
+                        << "I⁺ cell"
+                        << "";
+  QTest::newRow("hpf") << "hpf"
+                       << "addition"
+                       << "occupied arc"
+                       << "";
+  QTest::newRow("konolige") << "konolige"
+                            << "log"
+                            << "occupied (λ > 1)"
+                            << "";
+  QTest::newRow("murphy") << "murphy"
+                          << "bayes-recursive"
+                          << "Region I"
+                          << "Region III";
+  QTest::newRow("parameterized") << "parameterized"
+                                 << "bayes-recursive"
+                                 << "Region I"
+                                 << "Region III";
+}
+
+void TstModels::preferredRulesArePapersPairings() {
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  QFETCH(QString, occupied);
+  QFETCH(QString, beyond);
+  const ModelInfo& info = sensorModelInfo(model.toStdString());
+  QCOMPARE(QString::fromStdString(info.preferredRule), rule);
+  QVERIFY(compatibility(info.name, info.preferredRule).allowed);
+  QCOMPARE(QString::fromStdString(info.regions.occupied), occupied);
+  QVERIFY(!info.regions.empty.empty());
+  QCOMPARE(QString::fromStdString(info.regions.beyond), beyond);
 }
 
 QTEST_GUILESS_MAIN(TstModels)

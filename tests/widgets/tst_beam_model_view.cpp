@@ -71,6 +71,7 @@ class TstBeamModelView : public QObject {
   void hpfArcsAndHimmCell();
   void viewControls();
   void snapshots();
+  void compareWithPresetsAndPinnedRows();
 };
 
 void TstBeamModelView::mapColours_data() {
@@ -231,6 +232,41 @@ void TstBeamModelView::snapshots() {
   QVERIFY(renderBeamModel({fig3}, QSize(800, 860)).save(dir + "/beam_fig3.png"));
   QVERIFY(
       renderBeamModel({scene("konolige", 1.5)}, QSize(800, 860)).save(dir + "/beam_konolige.png"));
+}
+
+void TstBeamModelView::compareWithPresetsAndPinnedRows() {
+  BeamModelView view;
+  MapperSettings shown = applyPreset(*findPreset("paper002-fig6-parameterized"));  // P5 = 15°
+  view.setSettings(shown);
+  // A pinned row (Document::pinnedRows) with P5 = 6°, the classroom case.
+  MapperSettings narrow = shown;
+  narrow.parameters.set("p5", 6.0);
+  view.setPinnedConfigurations({{QStringLiteral("P5 6°"), narrow}});
+  auto* compare = view.findChild<QComboBox*>("compareChooser");
+  QVERIFY(compare->findText("Pinned: P5 6°") >= 0);
+  QVERIFY(view.compareWith("pinned:0"));
+  QCOMPARE(view.comparisonSettings()->parameters.get("p5"), 6.0);
+  QCOMPARE(view.scenes().size(), std::size_t{2});
+  QCOMPARE(compare->currentData().toString(), QString("pinned:0"));
+  // A paper preset: Arafat et al. Fig. 6 left, Murphy's model (β = 15°).
+  QVERIFY(view.compareWith("preset:paper002-fig6-standard"));
+  QCOMPARE(view.comparisonSettings()->model, std::string("murphy"));
+  QCOMPARE(view.comparisonSettings()->parameters.get("beta"), 15.0);
+  // These settings, frozen: they stay while the shown ones move on.
+  QVERIFY(view.compareWith("current"));
+  view.setSettings(narrow);
+  QCOMPARE(view.comparisonSettings()->parameters.get("p5"), 15.0);
+  QCOMPARE(view.scenes()[0].settings.parameters.get("p5"), 6.0);
+  // Unpinning the row a comparison came from ends that comparison.
+  QVERIFY(view.compareWith("pinned:0"));
+  view.setPinnedConfigurations({});
+  QVERIFY(!view.comparisonSettings().has_value());
+  QVERIFY(!view.compareWith("pinned:0"));
+  // A model at its defaults comes with its paper's rule.
+  QVERIFY(view.compareWith("model:hpf"));
+  QCOMPARE(view.comparisonSettings()->rule, std::string("addition"));
+  QVERIFY(view.compareWith(QString()));
+  QCOMPARE(view.scenes().size(), std::size_t{1});
 }
 
 QTEST_MAIN(TstBeamModelView)

@@ -89,7 +89,8 @@ class TestGridImage : public QObject {
         if (px >= 5 && px < 35 && py >= 5 && py < 25) {
           const int ix = (px - 5) / 10;
           const int iy = 1 - (py - 5) / 10;  // picture rows grow downwards, world y upwards
-          expected = rgbOf(levels[iy][ix]);
+          // Cell (0, 1) was never observed: unknown, whatever its level.
+          expected = ix == 0 && iy == 1 ? unknownColour().rgb() : rgbOf(levels[iy][ix]);
         }
         if (image.pixel(px, py) != expected)
           QFAIL(qPrintable(QStringLiteral("pixel (%1, %2)").arg(px).arg(py)));
@@ -103,7 +104,9 @@ class TestGridImage : public QObject {
     const QImage image = renderGridCells(map.get(), greyLevelPalette(), smallView(), {40, 30});
     QCOMPARE(image.pixel(30, 20), qRgb(0, 0, 0));
     QCOMPARE(image.pixel(10, 20), qRgb(255, 255, 255));  // cell (0, 0), level 0
-    QCOMPARE(image.pixel(10, 10), qRgb(119, 119, 119));  // cell (0, 1), level 8: 255 - 136
+    QCOMPARE(image.pixel(20, 10), qRgb(204, 204, 204));  // cell (1, 1), level 3: 255 - 51
+    // Cell (0, 1), never observed: the unknown colour in every palette.
+    QCOMPARE(image.pixel(10, 10), unknownColour().rgb());
   }
 
   void overlaysDrawOnlyWhenToggled() {
@@ -194,6 +197,127 @@ class TestGridImage : public QObject {
     const ViewTransform fit = ViewTransform::fitting(smallMap()->spec, size, 0);
     QVERIFY(std::abs(fit.pixelsPerMetre - 40.0 / 3.0) < 1e-12);
     QVERIFY((fit.centre - Position(1.5, 1.0)).norm() < 1e-12);
+  }
+
+  void unobservedIsNotFree_data() {
+    QTest::addColumn<int>("level");
+    QTest::addColumn<bool>("observed");
+    QTest::addColumn<bool>("unknown");
+    // HIMM leaves a never-observed cell at CV 0, the level of "certainly free" (paper 000 §2.2):
+    // it must be drawn unknown, and an observed CV 0 free.
+    QTest::newRow("HIMM CV 0, never observed") << 0 << false << true;
+    QTest::newRow("HIMM CV 0, observed free") << 0 << true << false;
+    // The probability rules leave it at p 0.5, level 8 (round(15 · 0.5) = 8 in
+    // levelOfProbability): still unknown; hpf × addition fills cells that stay at level ≤ 8, and
+    // an observed cell is never drawn unknown.
+    QTest::newRow("p 0.5, never observed") << 8 << false << true;
+    QTest::newRow("filled at level 8") << 8 << true << false;
+    QTest::newRow("filled at level 6") << 6 << true << false;
+    QTest::newRow("occupied") << 15 << true << false;
+  }
+
+  void unobservedIsNotFree() {
+    QFETCH(int, level);
+    QFETCH(bool, observed);
+    QFETCH(bool, unknown);
+    GridSpec spec;
+    spec.cellSize = 1.0;
+    spec.width = 1;
+    spec.height = 1;
+    auto map = std::make_shared<OccupancyMap>(OccupancyMap::unobserved(spec));
+    map->level = {static_cast<std::uint8_t>(level)};
+    map->observed = {static_cast<std::uint8_t>(observed ? 1 : 0)};
+    map->filled = {static_cast<std::uint8_t>(observed && level <= 8 ? 1 : 0)};
+    ViewTransform view;
+    view.centre = {0.5, 0.5};
+    view.pixelsPerMetre = 10.0;
+    for (const LevelPalette* palette : {&defaultLevelPalette(), &greyLevelPalette()}) {
+      const QRgb expected =
+          unknown ? unknownColour().rgb()
+                  : qRgb((*palette)[std::size_t(level)].r, (*palette)[std::size_t(level)].g,
+                         (*palette)[std::size_t(level)].b);
+      // The 1 m cell covers pixels 5..14 of a 20 × 20 picture centred on it.
+      QCOMPARE(renderGridCells(map.get(), *palette, view, {20, 20}).pixel(10, 10), expected);
+      GridScene scene;
+      scene.map = map;
+      QImage vector(20, 20, QImage::Format_RGB32);
+      QPainter painter(&vector);
+      paintGridVector(painter, scene, *palette, {}, view, {20, 20});
+      painter.end();
+      QCOMPARE(vector.pixel(10, 10), expected);
+    }
+    CellReadout r = readCell(*map, {0.5, 0.5});
+    QCOMPARE(describeReadout(r, "CV").contains("unknown"), unknown);
+  }
+
+  void unknownColourIsNoLevelAndInTheLegend() {
+    for (const LevelPalette* palette : {&defaultLevelPalette(), &greyLevelPalette()})
+      for (const Rgb& c : *palette) QVERIFY(unknownColour() != QColor(c.r, c.g, c.b));
+    QVERIFY(unknownColour() != backgroundColour());
+    const QSize size(500, 300);
+    const QImage image =
+        renderGridImage(GridScene{}, defaultLevelPalette(), Overlay::Legend, ViewTransform{}, size);
+    const QRect swatch = legendSwatch(kLevels, size);
+    QVERIFY(QRect(QPoint(0, 0), size).contains(swatch));
+    QVERIFY(swatch.left() > legendSwatch(kLevels - 1, size).right());  // set apart after 15
+    for (int y = swatch.top(); y <= swatch.bottom(); ++y)
+      for (int x = swatch.left(); x <= swatch.right(); ++x)
+        QCOMPARE(image.pixel(x, y), unknownColour().rgb());
+  }
+
+  void readoutHasOneClearProbability_data() {
+    QTest::addColumn<double>("probability");
+    QTest::addColumn<double>("native");
+    QTest::addColumn<QString>("expected");
+    QTest::addColumn<QString>("absent");
+    // Bayes: the native value is the probability itself; shown once, in two significant digits
+    // when below 0.001 (was "p(occ) 0.000 | p(occupied) 2.301e-86").
+    QTest::newRow("tiny") << 2.301e-86 << 2.301e-86 << "p(occ) 2.3e-86"
+                          << "p(occupied)";
+    QTest::newRow("near 1") << 1.0 - 4.1e-7 << 1.0 - 4.1e-7 << "p(occ) 1 − 4.1e-07"
+                            << "p(occ) 1.000";
+    QTest::newRow("middle") << 0.25 << 0.25 << "p(occ) 0.250"
+                            << "p(occupied)";
+    // Log-odds: a different quantity, kept. log(0.25 / 0.75) = −1.0986.
+    QTest::newRow("log-odds") << 0.25 << -1.0986 << "p(occupied) -1.099"
+                              << "p(occ) 0.000";
+  }
+
+  void readoutHasOneClearProbability() {
+    QFETCH(double, probability);
+    QFETCH(double, native);
+    QFETCH(QString, expected);
+    QFETCH(QString, absent);
+    CellReadout r;
+    r.inside = true;
+    r.observed = true;
+    r.level = levelOfProbability(probability);
+    r.probability = probability;
+    r.native = native;
+    const QString text = describeReadout(r, "p(occupied)");
+    QVERIFY2(text.contains(expected), qPrintable(text));
+    QVERIFY2(!text.contains(absent), qPrintable(text));
+  }
+
+  void firstViewFitsThePathAndTheReference() {
+    // A 4 m × 2 m box in 100 × 60 px without margin: min(100 / 4, 60 / 2) = 25 px/m, centred at
+    // (2, 1).
+    const ViewTransform t = ViewTransform::fittingBox({0.0, 0.0}, {4.0, 2.0}, {100, 60}, 0);
+    QCOMPARE(t.pixelsPerMetre, 25.0);
+    QVERIFY((t.centre - Position(2.0, 1.0)).norm() < 1e-12);
+    // The reference's corners (a 6 × 4 room and a pole at (9, 1)) bound the focus exactly.
+    ReferenceMap reference;
+    ReferenceObject walls;
+    walls.closed = true;
+    walls.corners = {{0.0, 0.0}, {6.0, 0.0}, {6.0, 4.0}, {0.0, 4.0}};
+    ReferenceObject pole;
+    pole.corners = {{9.0, 1.0}};
+    reference.objects = {walls, pole};
+    const FocusArea a = focusArea(nullptr, PoseSource::Truth, &reference);
+    QVERIFY(!a.empty());
+    QVERIFY((a.low - Position(0.0, 0.0)).norm() < 1e-12);
+    QVERIFY((a.high - Position(9.0, 4.0)).norm() < 1e-12);
+    QVERIFY(focusArea(nullptr, PoseSource::Truth, nullptr).empty());
   }
 
   void vectorPictureMatchesRaster() {

@@ -144,6 +144,7 @@ class TestMainWindowPanel : public QObject {
     expected.parameters.set("epsilon", 0.198);
     PngOptions o;
     o.legend = true;
+    o.unknown = kUnknownColour;  // the window draws never-observed cells in the unknown colour
     o.scale = 4;
     writeMapPng(batchMap(data_, expected), dir.filePath("want.png").toStdString(), o);
     QFile got(dir.filePath("map.png")), want(dir.filePath("want.png"));

@@ -9,6 +9,7 @@
 #include <QDoubleSpinBox>
 #include <QLabel>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSlider>
 #include <QStandardItemModel>
 
@@ -74,6 +75,11 @@ class TstParameterPanel : public QObject {
   void rowsFollowModelAndRule();
   void incompatibleRulesAreDisabled();
   void modelChangeMovesAnIncompatibleRule();
+  void modelChangePrefersThePapersRule_data();
+  void modelChangePrefersThePapersRule();
+  void slidersKeepTheirWidth_data();
+  void slidersKeepTheirWidth();
+  void outOfRangeIsSaid();
   void sliderKeysChangeSettings();
   void sliderDragChangesSettings();
   void spinBoxTyping();
@@ -164,11 +170,151 @@ void TstParameterPanel::modelChangeMovesAnIncompatibleRule() {
   ParameterPanel panel;  // hpf + addition
   QSignalSpy spy(&panel, &ParameterPanel::settingsChanged);
   choose(panel.findChild<QComboBox*>("modelChooser"), "himm");
-  // himm + addition is refused; the first rule in registry order that fits is bayes.
-  QCOMPARE(panel.settings().rule, std::string("bayes"));
+  // himm + addition is refused; HIMM's paper pairs it with its histogram rule (paper 000 §2.2).
+  QCOMPARE(panel.settings().rule, std::string("himm"));
   QCOMPARE(spy.count(), 1);
   QVERIFY(panel.findChild<QLabel*>("status")->text().contains("addition"));
-  QCOMPARE(sliderNames(panel), (QStringList{"no_echo", "p_hit", "p_miss", "prior"}));
+  QCOMPARE(sliderNames(panel),
+           (QStringList{"cv_max", "decrement", "increment", "no_echo", "p_hit", "p_miss"}));
+}
+
+void TstParameterPanel::modelChangePrefersThePapersRule_data() {
+  QTest::addColumn<QString>("from");
+  QTest::addColumn<QString>("fromRule");
+  QTest::addColumn<QString>("model");
+  QTest::addColumn<QString>("rule");
+  // The pairings each ModelInfo declares: paper 000 §2.1–2.2 (HPF with probability addition,
+  // HIMM with its histogram), paper 001 §5.1 (models compared on the log update), paper 002
+  // §3.3–§4 (Murphy and P1–P5 with recursive Bayes).
+  QTest::newRow("himm → parameterized") << "himm"
+                                        << "himm"
+                                        << "parameterized"
+                                        << "bayes-recursive";
+  QTest::newRow("himm → murphy") << "himm"
+                                 << "himm"
+                                 << "murphy"
+                                 << "bayes-recursive";
+  QTest::newRow("himm → hpf") << "himm"
+                              << "himm"
+                              << "hpf"
+                              << "addition";
+  QTest::newRow("himm → konolige") << "himm"
+                                   << "himm"
+                                   << "konolige"
+                                   << "log";
+  QTest::newRow("murphy → himm") << "murphy"
+                                 << "bayes-recursive"
+                                 << "himm"
+                                 << "himm";
+}
+
+void TstParameterPanel::modelChangePrefersThePapersRule() {
+  QFETCH(QString, from);
+  QFETCH(QString, fromRule);
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  ParameterPanel panel;
+  MapperSettings start;
+  start.model = from.toStdString();
+  start.rule = fromRule.toStdString();
+  start.parameters = defaultParameters(start.model, start.rule);
+  panel.setSettings(start);
+  QCOMPARE(panel.statusText(), QString());
+  QSignalSpy spy(&panel, &ParameterPanel::settingsChanged);
+  choose(panel.findChild<QComboBox*>("modelChooser"), model);
+  QCOMPARE(spy.count(), 1);
+  QCOMPARE(panel.settings().rule, rule.toStdString());
+  QCOMPARE(panel.findChild<QComboBox*>("ruleChooser")->currentData().toString(), rule);
+  // The note names both rules' titles and stays when the window shows the settings back (the
+  // app calls setSettings with what the panel emitted).
+  const QString note = panel.statusText();
+  QVERIFY2(note.contains(QString::fromStdString(updateRuleInfo(fromRule.toStdString()).title)),
+           qPrintable(note));
+  QVERIFY2(note.contains(QString::fromStdString(updateRuleInfo(rule.toStdString()).title)),
+           qPrintable(note));
+  panel.setSettings(lastEmitted(spy));
+  QCOMPARE(panel.statusText(), note);
+  QVERIFY(panel.findChild<QLabel*>("status")->isVisibleTo(&panel));
+  // The next change (one slider step) ends it.
+  QSlider* slider = panel.findChildren<QSlider*>().first();
+  QTest::keyClick(slider, slider->value() < slider->maximum() ? Qt::Key_Right : Qt::Key_Left);
+  QCOMPARE(spy.count(), 2);
+  QCOMPARE(panel.statusText(), QString());
+}
+
+void TstParameterPanel::slidersKeepTheirWidth_data() {
+  QTest::addColumn<QString>("model");
+  QTest::addColumn<QString>("rule");
+  // Every model with its paper's rule; Konolige's rows ("k (attenuation_slope) [1/m]") were the
+  // widest labels.
+  for (const std::string& m : sensorModelNames()) {
+    const std::string& r = sensorModelInfo(m).preferredRule;
+    QTest::newRow((m + " × " + r).c_str())
+        << QString::fromStdString(m) << QString::fromStdString(r);
+  }
+}
+
+void TstParameterPanel::slidersKeepTheirWidth() {
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  ParameterPanel panel;
+  MapperSettings s;
+  s.model = model.toStdString();
+  s.rule = rule.toStdString();
+  s.parameters = defaultParameters(s.model, s.rule);
+  panel.setSettings(s);
+  // At its smallest: the panel never lays a groove out narrower than 80 px.
+  panel.resize(panel.minimumSizeHint().width(), 700);
+  panel.show();
+  QVERIFY(QTest::qWaitForWindowExposed(&panel));
+  const QList<QSlider*> sliders = panel.findChildren<QSlider*>();
+  QVERIFY(!sliders.isEmpty());
+  for (QSlider* slider : sliders) {
+    QStyleOptionSlider option;
+    option.initFrom(slider);
+    option.orientation = slider->orientation();
+    const QRect groove = slider->style()->subControlRect(QStyle::CC_Slider, &option,
+                                                         QStyle::SC_SliderGroove, slider);
+    QVERIFY2(groove.width() >= 80,
+             qPrintable(
+                 QStringLiteral("%1: groove %2 px").arg(slider->objectName()).arg(groove.width())));
+    QVERIFY2(
+        slider->width() >= ParameterPanel::kMinSliderWidth,
+        qPrintable(QStringLiteral("%1: %2 px").arg(slider->objectName()).arg(slider->width())));
+    // Not cut by the scroll area: the whole slider lies across its viewport.
+    const QWidget* viewport = panel.findChild<QScrollArea*>()->viewport();
+    const QRect r(slider->mapTo(viewport, QPoint(0, 0)), slider->size());
+    QVERIFY2(r.left() >= 0 && r.right() < viewport->width(), qPrintable(slider->objectName()));
+    // The long name stays reachable: tooltip and accessible name.
+    QVERIFY(slider->toolTip().contains(slider->objectName().mid(7)));
+  }
+}
+
+void TstParameterPanel::outOfRangeIsSaid() {
+  MapperSettings s;
+  s.model = "himm";
+  s.rule = "himm";
+  s.parameters = defaultParameters(s.model, s.rule);
+  ParameterPanel panel;
+  panel.setSettings(s);
+  QSignalSpy spy(&panel, &ParameterPanel::settingsChanged);
+  // I⁺ is declared in [1, 15], default 3 (rules/himm_rule.cpp; paper 000 §2.2).
+  QDoubleSpinBox* spin = panel.spinBoxFor("increment");
+  spin->setFocus();
+  spin->selectAll();
+  QTest::keyClicks(spin, "1e9");
+  QTest::keyClick(spin, Qt::Key_Return);
+  QCOMPARE(spy.count(), 0);
+  QCOMPARE(panel.settings().parameters.get("increment"), 3.0);
+  QVERIFY2(panel.statusText().contains("out of range"), qPrintable(panel.statusText()));
+  QVERIFY2(panel.statusText().contains("1e9"), qPrintable(panel.statusText()));
+  // A value in range is taken and ends the note.
+  spin->selectAll();
+  QTest::keyClicks(spin, "5");
+  QTest::keyClick(spin, Qt::Key_Return);
+  QCOMPARE(spy.count(), 1);
+  QCOMPARE(panel.settings().parameters.get("increment"), 5.0);
+  QCOMPARE(panel.statusText(), QString());
 }
 
 void TstParameterPanel::sliderKeysChangeSettings() {
@@ -276,7 +422,8 @@ void TstParameterPanel::resetRestoresDefaults() {
   auto* reset = panel.findChild<QPushButton*>("resetToDefaults");
   QTest::mouseClick(reset, Qt::LeftButton);
   QCOMPARE(spy.count(), 1);
-  QVERIFY(panel.settings().parameters == defaultParameters("murphy", "addition"));
+  // Murphy's model comes with its paper's recursive Bayes (paper 002 §3.3).
+  QVERIFY(panel.settings().parameters == defaultParameters("murphy", "bayes-recursive"));
   QCOMPARE(panel.settings().parameters.get("beta"), 15.0);  // murphy.cpp default
   QCOMPARE(panel.spinBoxFor("beta")->value(), 15.0);
   QTest::mouseClick(reset, Qt::LeftButton);

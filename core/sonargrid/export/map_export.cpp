@@ -161,7 +161,10 @@ cv::Mat renderBgr(const OccupancyMap& map, const PngOptions& options) {
   for (int iy = spec.height - 1, block = 0; iy >= 0; --iy, ++block) {
     auto* first = image.ptr<cv::Vec3b>(block * options.scale);
     for (int ix = 0; ix < spec.width; ++ix) {
-      const Rgb& c = palette[map.level[spec.linear(CellIndex(ix, iy))]];
+      const std::size_t i = spec.linear(CellIndex(ix, iy));
+      const bool unknown =
+          options.unknown && map.observed.size() == map.level.size() && map.observed[i] == 0;
+      const Rgb& c = unknown ? *options.unknown : palette[map.level[i]];
       const cv::Vec3b px(c.b, c.g, c.r);
       std::fill_n(first + static_cast<std::ptrdiff_t>(ix) * options.scale, options.scale, px);
     }

@@ -4,6 +4,7 @@
 // `scale`, optional legend) and a ROS map_server pair (`.yaml` + `.pgm`).
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,6 +18,9 @@ struct PngOptions {
   int scale = 1;        // pixels per cell
   bool legend = false;  // a strip with the 16 levels and their numbers below the map
   const LevelPalette* palette = nullptr;  // nullptr: defaultLevelPalette()
+  // The colour of never-observed cells (e.g. kUnknownColour, as the app draws them); nullopt:
+  // their level's colour, as paper 000 Fig. 4 prints them.
+  std::optional<Rgb> unknown;
   // Drawn over the cells, in world metres: e.g. a reference map's edges (paper 000 Fig. 4 overlays
   // the obstacles as solid lines) and small circles at the robot's stops.
   std::vector<std::pair<Position, Position>> lines;

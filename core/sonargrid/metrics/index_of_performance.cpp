@@ -29,7 +29,33 @@ std::vector<float> distanceToApg(const ActualPositionGrid& apg) {
   return out;
 }
 
-IndexOfPerformance indexOfPerformance(const OccupancyMap& map, const ActualPositionGrid& apg) {
+const char* iopWeightName(IopWeight w) {
+  return w == IopWeight::Evidence ? "evidence" : "level";
+}
+
+bool parseIopWeight(const std::string& text, IopWeight& out) {
+  if (text == "evidence") {
+    out = IopWeight::Evidence;
+  } else if (text == "level") {
+    out = IopWeight::Level;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+double iopCellWeight(const OccupancyMap& map, std::size_t i, IopWeight weight) {
+  if (weight == IopWeight::Evidence && map.evidence.size() == map.level.size()) {
+    const double e = map.evidence[i];
+    return 15.0 * (e < 0.0 ? 0.0 : (e > 1.0 ? 1.0 : e));
+  }
+  return map.level[i];
+}
+
+IndexOfPerformance indexOfPerformance(const OccupancyMap& map, const ActualPositionGrid& apg,
+                                      const IopOptions& options) {
+  if (!(options.filledThreshold >= 0.0 && options.filledThreshold <= 15.0))
+    throw std::invalid_argument("IOP: the filled threshold must be between 0 and 15");
   if (!(map.spec == apg.spec))
     throw std::invalid_argument("IOP: the APG is not drawn on the map's grid");
   if (map.filled.size() != map.spec.cellCount() || map.level.size() != map.spec.cellCount()) {
@@ -40,8 +66,9 @@ IndexOfPerformance indexOfPerformance(const OccupancyMap& map, const ActualPosit
   double weighted = 0.0;
   for (std::size_t i = 0; i < distance.size(); ++i) {
     if (map.filled[i] == 0) continue;
+    const double cv = iopCellWeight(map, i, options.weight);
+    if (cv < options.filledThreshold) continue;
     ++out.filledCells;
-    const double cv = map.level[i];
     weighted += static_cast<double>(distance[i]) * cv;
     out.cvSum += cv;
   }

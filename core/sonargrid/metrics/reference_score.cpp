@@ -3,6 +3,7 @@
 
 #include <array>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 #include "sonargrid/reference/actual_position_grid.h"
@@ -118,13 +119,50 @@ std::optional<double> ReferenceScore::value(Metric m) const {
   return std::nullopt;
 }
 
-ReferenceScore scoreAgainstReference(const OccupancyMap& map, const ReferenceMap& reference,
+std::vector<std::uint8_t> commonObservedCells(const std::vector<const OccupancyMap*>& maps) {
+  if (maps.empty()) throw std::invalid_argument("common cells: no map given");
+  for (const OccupancyMap* m : maps) {
+    if (m == nullptr) throw std::invalid_argument("common cells: a null map");
+    if (!(m->spec == maps.front()->spec))
+      throw std::invalid_argument("common cells: the maps are not on the same grid");
+    if (m->observed.size() != m->spec.cellCount())
+      throw std::invalid_argument("common cells: a map's observed layer does not match its grid");
+  }
+  std::vector<std::uint8_t> common(maps.front()->observed.size(), 1);
+  for (const OccupancyMap* m : maps) {
+    for (std::size_t i = 0; i < common.size(); ++i) common[i] = common[i] && m->observed[i] ? 1 : 0;
+  }
+  return common;
+}
+
+OccupancyMap restrictedToCells(const OccupancyMap& map, const std::vector<std::uint8_t>& mask) {
+  if (mask.empty()) return map;
+  if (mask.size() != map.spec.cellCount() || map.observed.size() != mask.size())
+    throw std::invalid_argument("score: the cell mask is not of the map's size");
+  OccupancyMap out = map;
+  const std::uint8_t unobservedLevel = levelOfProbability(0.5);
+  const bool hasEvidence = out.evidence.size() == mask.size();
+  for (std::size_t i = 0; i < mask.size(); ++i) {
+    if (mask[i] != 0) continue;
+    out.probability[i] = 0.5;
+    out.level[i] = unobservedLevel;
+    out.filled[i] = 0;
+    out.observed[i] = 0;
+    if (hasEvidence) out.evidence[i] = 0.0;
+  }
+  return out;
+}
+
+ReferenceScore scoreAgainstReference(const OccupancyMap& unmasked, const ReferenceMap& reference,
                                      const ScoreOptions& options) {
-  const std::size_t n = map.spec.cellCount();
-  if (n == 0 || map.probability.size() != n || map.level.size() != n || map.filled.size() != n ||
-      map.observed.size() != n) {
+  const std::size_t n = unmasked.spec.cellCount();
+  if (n == 0 || unmasked.probability.size() != n || unmasked.level.size() != n ||
+      unmasked.filled.size() != n || unmasked.observed.size() != n) {
     throw std::invalid_argument("score: the map's layers do not match its grid");
   }
+  const OccupancyMap restricted =
+      options.cellMask.empty() ? OccupancyMap{} : restrictedToCells(unmasked, options.cellMask);
+  const OccupancyMap& map = options.cellMask.empty() ? unmasked : restricted;
   ReferenceScore out;
   out.computed = options.metrics;
   const ActualPositionGrid apg = ActualPositionGrid::rasterise(reference, map.spec);
@@ -140,10 +178,19 @@ ReferenceScore scoreAgainstReference(const OccupancyMap& map, const ReferenceMap
   out.idealFree = ideal.count(IdealCell::Free);
   out.idealOccupied = ideal.count(IdealCell::Occupied);
   out.idealUnknown = ideal.count(IdealCell::Unknown);
-  for (std::size_t i = 0; i < n; ++i) out.cellsEvaluated += evaluatedCell(map, ideal, i) ? 1 : 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    out.cellsEvaluated += evaluatedCell(map, ideal, i) ? 1 : 0;
+    out.apgCellsObserved += apg.cells[i] != 0 && map.observed[i] != 0 ? 1 : 0;
+  }
+  if (out.apgCellsObserved == 0) {
+    std::ostringstream msg;
+    msg << "the map observed none of the " << out.apgCells
+        << " cells on the reference's edges: is the reference of this place, in the map's frame?";
+    out.warnings.push_back(msg.str());
+  }
 
   const std::set<Metric>& m = options.metrics;
-  if (wants(m, {Metric::Iop})) out.iop = indexOfPerformance(map, apg);
+  if (wants(m, {Metric::Iop})) out.iop = indexOfPerformance(map, apg, options.iop);
   if (wants(m, {Metric::Correlation, Metric::MapScore, Metric::MapScoreOccupied, Metric::Match,
                 Metric::CrossEntropy, Metric::Brier})) {
     out.agreement = mapAgreement(map, ideal);

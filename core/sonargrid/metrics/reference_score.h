@@ -54,12 +54,32 @@ struct ScoreOptions {
   std::set<Metric> metrics{allMetrics().begin(), allMetrics().end()};
   int pairs = kDefaultPathPairs;
   std::uint64_t seed = kDefaultPathSeed;
+  // The cells to score, row-major on the map's grid (1 scored, 0 left out); empty: every cell.
+  // A cell left out counts as one the map never observed, in every metric: it is not evaluated,
+  // not filled for the IOP, and passable and never an end point for the path comparison. Used to
+  // score several maps on the same cells (commonObservedCells, docs/metrics.md).
+  std::vector<std::uint8_t> cellMask;
+  IopOptions iop;  // the IOP's weight and filled threshold
 };
+
+// The cells that every one of `maps` observed (1) or not (0), row-major. Throws
+// std::invalid_argument when `maps` is empty, holds a null pointer, or the maps are not all on the
+// same grid.
+std::vector<std::uint8_t> commonObservedCells(const std::vector<const OccupancyMap*>& maps);
+
+// `map` with every cell outside `mask` made never observed (p 0.5, level 8, not filled, no
+// evidence): what ScoreOptions::cellMask scores. An empty mask returns the map unchanged. Throws
+// std::invalid_argument when the mask is not of the map's size.
+OccupancyMap restrictedToCells(const OccupancyMap& map, const std::vector<std::uint8_t>& mask);
 
 struct ReferenceScore {
   std::set<Metric> computed;
   std::size_t apgCells = 0;
   std::size_t cellsEvaluated = 0;
+  std::size_t apgCellsObserved = 0;  // APG cells (reference edges) that the scored map observed
+  // What the numbers cannot be trusted for, one sentence each (e.g. the map never observed any
+  // reference edge: a reference of another place, or in another frame). Empty when all is well.
+  std::vector<std::string> warnings;
   std::size_t idealFree = 0, idealOccupied = 0, idealUnknown = 0;
   IndexOfPerformance iop;
   MapAgreement agreement;
@@ -72,7 +92,8 @@ struct ReferenceScore {
 };
 
 // Throws MetricsError when no reference edge or obstacle touches the map's grid (nothing to score
-// against), std::invalid_argument for a map whose layers do not match its grid.
+// against), std::invalid_argument for a map whose layers (or options.cellMask, when given) do not
+// match its grid.
 ReferenceScore scoreAgainstReference(const OccupancyMap& map, const ReferenceMap& reference,
                                      const ScoreOptions& options = {});
 

@@ -45,7 +45,10 @@ const ModelInfo& HimmModel::staticInfo() {
            "P(occ | reading) of the axis cells before the echo; the himm rule only needs it below "
            "0.5."},
           noEchoParameter("free evidence on every axis cell up to the maximum range"),
-      }};
+      },
+      // Paper 000 §2.2: the histogram grid is HIMM's own update (I⁺ on the axis cell, I⁻ before).
+      "himm",
+      {"I⁺ cell", "I⁻ cells", ""}};
   return info;
 }
 

@@ -65,7 +65,10 @@ const ModelInfo& HpfModel::staticInfo() {
            "Distance from the transducer where the empty region starts."},
           noEchoParameter(
               "free space along the cone up to the maximum range (Er with R − ε = R_max)"),
-      }};
+      },
+      // Paper 000 §2.1 eqs 7–8: the HPF certainty grid combines readings by probability addition.
+      "addition",
+      {"occupied arc", "empty arc", ""}};
   return info;
 }
 

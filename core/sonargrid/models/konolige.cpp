@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Konolige's multiple-target model (paper 001 §2.2, after Konolige 1997), in the reading docs/models.md
-// gives ("Konolige"): the printed ratio of densities becomes the likelihood ratio
+// Konolige's multiple-target model (paper 001 §2.2, after Konolige 1997), in the reading
+// docs/models.md gives ("Konolige"): the printed ratio of densities becomes the likelihood ratio
 //   λ = p(D | cell occupied) / p(D | cell empty)
 // of the first return D. An occupied cell at range r and angle θ echoes with probability
 // g = a(r)·exp(-θ²/2σ²) (σ = ω/2, the printed lobe width), at a range spread N(r, d(r)²); false
@@ -175,7 +175,10 @@ const ModelInfo& KonoligeModel::staticInfo() {
            "paper 001 §2.2: d(r) = 0.01 + 0.015 r, d₁ = 0.015",
            "Growth of the range standard deviation per metre of range."},
           noEchoParameter("λ = 1 − g(r, θ) over the cone up to the detection range"),
-      }};
+      },
+      // Paper 001 §5.1 compares its sonar models on the log update (§3.3).
+      "log",
+      {"occupied (λ > 1)", "free (λ < 1)", ""}};
   return info;
 }
 

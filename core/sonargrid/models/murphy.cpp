@@ -100,7 +100,10 @@ const ModelInfo& MurphyModel::staticInfo() {
           {"max_occupied", "Max_occ", "", 0.5, 0.999, 0.98, "paper 002 eq 1 (Max_occupied = 0.98)",
            "Ceiling of P(s|Occ); also the clamp that keeps cells from becoming absorbing."},
           noEchoParameter("Region II (free) over the cone up to min(R, maximum range)"),
-      }};
+      },
+      // Paper 002 §3.3: Murphy's model is combined by recursive Bayesian updating (eqs 5–6).
+      "bayes-recursive",
+      {"Region I", "Region II", "Region III"}};
   return info;
 }
 

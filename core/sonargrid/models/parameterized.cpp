@@ -100,7 +100,10 @@ const ModelInfo& ParameterizedModel::staticInfo() {
            "Half-width of the cone; values fall linearly to 0.5 at ±P5."},
           noEchoParameter(
               "Region II (P1 rising to 0.5 − P2) over the cone up to the maximum range"),
-      }};
+      },
+      // Paper 002 §4: the parameterized model keeps Murphy's recursive Bayes (§3.3, eqs 5–6).
+      "bayes-recursive",
+      {"Region I", "Region II", "Region III"}};
   return info;
 }
 

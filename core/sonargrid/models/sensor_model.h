@@ -19,6 +19,18 @@ struct ModelInfo {
   std::string title;   // e.g. "Moravec–Elfes heuristic probability functions (HPF)"
   std::string source;  // paper and section
   std::vector<ParameterSpec> parameters;
+  // The update rule the model's paper pairs it with; the app switches to it with the model (the
+  // user may then choose another).
+  std::string preferredRule;
+  // The model's own names for its regions (paper 002 §3.1 Figure 1 names Murphy's I, II, III),
+  // which the beam view labels: `occupied` where the reading raises P(occ), `empty` where it
+  // lowers it, and `beyond` past the reading where the model writes nothing ("" when the model
+  // does not name that part; the view then says "no update").
+  struct Regions {
+    std::string occupied;
+    std::string empty;
+    std::string beyond;
+  } regions;
 };
 
 // Where a point falls for a reading (paper 002 §3.1, Figure 1).

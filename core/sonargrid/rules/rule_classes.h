@@ -32,6 +32,8 @@ class AdditionRule final : public RuleOnCells<AdditionRule, EmptyEvidence, Occup
   double occupancyOf(const EmptyEvidence& e, const OccupiedEvidence& o) const;
   double nativeOf(const EmptyEvidence& e, const OccupiedEvidence& o) const;
   bool filledOf(const EmptyEvidence& e, const OccupiedEvidence& o) const { return o.occ > e.emp; }
+  // Paper 000 eq 7: a filled cell's value is its Occ.
+  double evidenceOf(const EmptyEvidence& /*e*/, const OccupiedEvidence& o) const { return o.occ; }
 
  private:
   bool paper001Combine_ = false;
@@ -121,6 +123,7 @@ class HimmRule final : public RuleOnCells<HimmRule, HimmCell> {
   double nativeOf(const HimmCell& c) const { return c.cv; }
   bool filledOf(const HimmCell& c) const { return c.cv > 0; }
   std::uint8_t levelOf(const HimmCell& c) const { return c.cv; }
+  double evidenceOf(const HimmCell& c) const { return c.cv / double(cvMax_); }  // CV, paper 000
 
  private:
   int increment_ = 3, decrement_ = 1, cvMax_ = 15;
@@ -141,6 +144,7 @@ class DempsterShaferRule final : public RuleOnCells<DempsterShaferRule, Dempster
   double occupancyOf(const DempsterShaferCell& c) const;
   double nativeOf(const DempsterShaferCell& c) const { return c.occ - c.emp; }
   bool filledOf(const DempsterShaferCell& c) const { return c.occ > c.emp; }
+  double evidenceOf(const DempsterShaferCell& c) const { return c.occ; }  // m(occ)
 };
 
 }  // namespace sg

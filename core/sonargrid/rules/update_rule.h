@@ -99,6 +99,13 @@ class RuleOnCells : public UpdateRule {
   std::uint8_t levelOf(const Cells&... c) const {
     return levelOfProbability(self().occupancyOf(c...));
   }
+  // The rule's certainty of occupancy in [0, 1] (OccupancyMap::evidence): by default that of a
+  // probabilistic rule, 2p − 1 above p = 0.5 and 0 below. Rules that keep occupied evidence of
+  // their own (HIMM, addition, Dempster–Shafer) say so.
+  double evidenceOf(const Cells&... c) const {
+    const double e = 2.0 * self().occupancyOf(c...) - 1.0;
+    return e > 0.0 ? e : 0.0;
+  }
 
   void writeLayers(const Grid& grid, OccupancyMap& map, std::size_t begin,
                    std::size_t end) const final {
@@ -125,12 +132,15 @@ class RuleOnCells : public UpdateRule {
     double* const native = map.native.data();
     std::uint8_t* const level = map.level.data();
     std::uint8_t* const filled = map.filled.data();
+    // The evidence layer when the map has one (a snapshot's always does).
+    double* const evidence = map.evidence.size() >= end ? map.evidence.data() : nullptr;
     const Rule& rule = self();
     for (std::size_t i = begin; i < end; ++i) {
       probability[i] = rule.occupancyOf(std::get<Plane>(planes)[i]...);
       native[i] = rule.nativeOf(std::get<Plane>(planes)[i]...);
       level[i] = rule.levelOf(std::get<Plane>(planes)[i]...);
       filled[i] = rule.filledOf(std::get<Plane>(planes)[i]...) ? 1 : 0;
+      if (evidence != nullptr) evidence[i] = rule.evidenceOf(std::get<Plane>(planes)[i]...);
     }
   }
 };

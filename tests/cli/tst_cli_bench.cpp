@@ -1,0 +1,167 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// `sonargrid-cli bench` (docs/cli.md, "bench"): the --json contract — exactly the keys of issue 15,
+// one timing per allowed model/rule pair for both workloads, the thread count asked for, the
+// office log's reading count as `map` reports it, and the bytes per cell each rule's layout gives.
+// Timings are checked only for being positive and finite: no unit test measures speed.
+
+#include <QFile>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QProcess>
+#include <QProcessEnvironment>
+#include <QSet>
+#include <QtTest>
+#include <cmath>
+
+namespace {
+
+const QString kCli = QStringLiteral(SONARGRID_CLI);
+const QString kOfficeLog = QStringLiteral(SONARGRID_DATASETS "/office/office.sglog");
+
+struct Run {
+  bool finished = false;
+  int code = -1;
+  QByteArray out;
+  QByteArray err;
+};
+
+Run runCli(const QStringList& args, int timeoutMs = 120000) {
+  QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+  env.remove("SONARGRID_THREADS");
+  QProcess p;
+  p.setProcessEnvironment(env);
+  p.start(kCli, args);
+  Run r;
+  if (!p.waitForStarted(10000)) return r;
+  r.finished = p.waitForFinished(timeoutMs);
+  if (!r.finished) {
+    p.kill();
+    p.waitForFinished(5000);
+    return r;
+  }
+  r.code = p.exitStatus() == QProcess::NormalExit ? p.exitCode() : -1;
+  r.out = p.readAllStandardOutput();
+  r.err = p.readAllStandardError();
+  return r;
+}
+
+QByteArray describe(const QStringList& args, const Run& r) {
+  return "sonargrid-cli " + args.join(' ').toUtf8() + "\n  exit " + QByteArray::number(r.code) +
+         "\n  stdout: " + r.out.left(400) + "\n  stderr: " + r.err.left(400);
+}
+
+bool positiveFinite(const QJsonValue& v) {
+  return v.isDouble() && std::isfinite(v.toDouble()) && v.toDouble() > 0.0;
+}
+
+}  // namespace
+
+class TstCliBench : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void initTestCase();
+  void quickJson();
+  void bytesPerCell_data();
+  void bytesPerCell();
+  void badFlags_data();
+  void badFlags();
+
+ private:
+  QSet<QString> pairs_;  // "model/rule" of every allowed pair
+  QJsonObject bench_;    // bench --quick --json --threads 2
+};
+
+void TstCliBench::initTestCase() {
+  QVERIFY2(QFile::exists(kCli), qPrintable(kCli));
+  const Run models = runCli({"models", "--json"});
+  QVERIFY2(models.finished && models.code == 0, describe({"models", "--json"}, models));
+  for (const QJsonValue& v :
+       QJsonDocument::fromJson(models.out).object().value("compatible").toArray())
+    pairs_.insert(v.toArray()[0].toString() + "/" + v.toArray()[1].toString());
+  QVERIFY(pairs_.size() >= 25);
+  // --quick finishes within a minute on an idle 2-core machine; a loaded one gets fifteen.
+  const QStringList args = {"bench", "--quick", "--json", "--threads", "2"};
+  const Run r = runCli(args, 900000);
+  QVERIFY2(r.finished && r.code == 0, describe(args, r));
+  QJsonParseError error;
+  const QJsonDocument doc = QJsonDocument::fromJson(r.out, &error);
+  QVERIFY2(error.error == QJsonParseError::NoError && doc.isObject(), r.out.left(400));
+  bench_ = doc.object();
+}
+
+void TstCliBench::quickJson() {
+  // Exactly the keys of the contract (issue 15).
+  const QStringList keys = {"cores",
+                            "office_readings",
+                            "office_remap_ms",
+                            "workload_remap_ms",
+                            "load_1m_readings_s",
+                            "bytes_per_cell"};
+  QStringList got = bench_.keys();
+  QStringList want = keys;
+  got.sort();
+  want.sort();
+  QCOMPARE(got, want);
+  // --threads 2 is what the policy uses.
+  QCOMPARE(bench_.value("cores").toInt(), 2);
+  // The office log's readings, as `map` counts them.
+  const QStringList mapArgs = {"map",  "--log",  kOfficeLog, "--model",
+                               "himm", "--rule", "himm",     "--json"};
+  const Run map = runCli(mapArgs);
+  QVERIFY2(map.finished && map.code == 0, describe(mapArgs, map));
+  const qint64 readings = QJsonDocument::fromJson(map.out).object().value("readings").toInteger(-1);
+  QVERIFY(readings > 100000);  // the bundled office log holds some 112 000 readings
+  QCOMPARE(bench_.value("office_readings").toInteger(), readings);
+  // One positive, finite time per allowed pair, no other key.
+  for (const char* workload : {"office_remap_ms", "workload_remap_ms"}) {
+    const QJsonObject times = bench_.value(workload).toObject();
+    const QStringList timed = times.keys();
+    QCOMPARE(QSet<QString>(timed.begin(), timed.end()), pairs_);
+    for (auto it = times.begin(); it != times.end(); ++it)
+      QVERIFY2(positiveFinite(it.value()), qPrintable(QString(workload) + " " + it.key()));
+  }
+  QVERIFY(positiveFinite(bench_.value("load_1m_readings_s")));
+}
+
+void TstCliBench::bytesPerCell_data() {
+  QTest::addColumn<QString>("rule");
+  QTest::addColumn<int>("bytes");
+  // The rule's planes (rule_classes.h), 1 byte of observed/written mark (grid.h) and the snapshot
+  // a view reads (occupancy_map.h): probability and native as doubles, level, filled and observed
+  // as bytes, 8 + 8 + 1 + 1 + 1 = 19.
+  QTest::newRow("addition") << "addition" << 8 + 8 + 1 + 19;  // Emp and Occ, doubles
+  QTest::newRow("bayes") << "bayes" << 8 + 1 + 19;            // p, a double
+  QTest::newRow("bayes-recursive") << "bayes-recursive" << 8 + 1 + 19;
+  QTest::newRow("log") << "log" << 8 + 1 + 19;                           // Emp · Occ
+  QTest::newRow("logodds") << "logodds" << 8 + 1 + 19;                   // the odds
+  QTest::newRow("himm") << "himm" << 1 + 1 + 19;                         // CV, a byte
+  QTest::newRow("dempster-shafer") << "dempster-shafer" << 16 + 1 + 19;  // m(occ), m(emp)
+}
+
+void TstCliBench::bytesPerCell() {
+  QFETCH(QString, rule);
+  QFETCH(int, bytes);
+  const QJsonObject perRule = bench_.value("bytes_per_cell").toObject();
+  QCOMPARE(perRule.size(), 7);
+  QCOMPARE(perRule.value(rule).toInt(-1), bytes);
+}
+
+void TstCliBench::badFlags_data() {
+  QTest::addColumn<QStringList>("args");
+  QTest::addColumn<QString>("named");
+  QTest::newRow("negative threads") << QStringList{"bench", "--threads", "-1"} << "--threads";
+  QTest::newRow("unknown flag") << QStringList{"bench", "--fast"} << "--fast";
+}
+
+void TstCliBench::badFlags() {
+  QFETCH(QStringList, args);
+  QFETCH(QString, named);
+  const Run r = runCli(args);
+  QVERIFY2(r.finished && r.code == 2, describe(args, r));
+  QVERIFY2(r.err.contains(named.toUtf8()), r.err);
+}
+
+QTEST_GUILESS_MAIN(TstCliBench)
+#include "tst_cli_bench.moc"

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#pragma once
+// The metrics panel (a dock of the window): IOP and every metric of `sonargrid-cli score` for the
+// map the window shows, against the document's reference; without a reference, paper 002's
+// goodness (VSDNS, derivative noise); with a second run, the two-run comparison. Each number shows
+// its name, its unit and, in a tooltip, what it is and which paper defines it.
+//
+// The numbers come from computeMetrics() (metrics_compute.h: the core calls the CLI makes) on a
+// private one-thread pool, off the GUI thread. A new map, reference or run cancels the stale
+// computation, which stops at its next check and is never shown; the destructor cancels the running
+// one and waits for it, so the window may close mid-computation.
+
+#include <QThreadPool>
+#include <QWidget>
+#include <atomic>
+#include <memory>
+#include <optional>
+
+#include "metrics_compute.h"
+
+class QLabel;
+class QTableWidget;
+
+namespace sg::ui {
+
+class MetricsPanel : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit MetricsPanel(QWidget* parent = nullptr);
+  ~MetricsPanel() override;
+
+  // Each schedules a recomputation (coalesced: several changes in one event-loop turn compute
+  // once).
+  void setMap(std::shared_ptr<const OccupancyMap> map);
+  void setReference(std::shared_ptr<const ReferenceMap> reference);
+  // The runs and what the shown map was built with (for the goodness measures, which map the run
+  // again with an observer).
+  void setRuns(std::shared_ptr<const Dataset> run, std::shared_ptr<const Dataset> secondRun,
+               const MapperSettings& settings, double cellSize);
+  // Options of the reference metrics (path pairs, seed); the CLI's defaults unless set.
+  void setScoreOptions(const ScoreOptions& options);
+
+  // The numbers shown (null before the first result).
+  const MetricsResult* result() const { return result_ ? &*result_ : nullptr; }
+  // True while a computation is scheduled or running.
+  bool busy() const { return pending_ || running_ > 0; }
+  // Blocks (running the event loop) until the newest inputs' numbers are shown; false on timeout.
+  bool waitForResult(int timeoutMs);
+  // Requests made / results shown (a result is shown for the newest request only).
+  quint64 generation() const { return generation_; }
+  quint64 shownGeneration() const { return shownGeneration_; }
+
+ signals:
+  // New numbers are shown (the D_min tint of the scored map comes with them).
+  void updated();
+  void dminTintChanged(std::shared_ptr<const QImage> tint, const sg::GridSpec& spec);
+
+ private:
+  void schedule();
+  void start();
+  void show(quint64 generation, const std::optional<MetricsResult>& result);
+  void fill();
+
+  QLabel* status_;
+  QTableWidget* table_;
+  MetricsInput input_;
+  std::optional<MetricsResult> result_;
+  // Goodness depends on the runs and the settings, not on the map shown (it maps the whole log
+  // again): kept while they stay, so that the timeline playing does not re-map the log each step.
+  struct GoodnessKey {
+    std::shared_ptr<const Dataset> run, secondRun;
+    MapperSettings settings;
+    double cellSize = 0.0;
+    bool goodness = false;
+    bool operator==(const GoodnessKey& o) const;
+  };
+  std::optional<GoodnessKey> goodnessKey_;
+  std::optional<SetEvaluation> goodness_;
+  quint64 generation_ = 0;
+  quint64 shownGeneration_ = 0;
+  bool pending_ = false;
+  int running_ = 0;
+  std::shared_ptr<std::atomic<bool>> cancelRunning_;
+  QThreadPool pool_;
+};
+
+}  // namespace sg::ui
