@@ -68,9 +68,10 @@ constexpr FreeMeasure kFreeMeasures[] = {
        if (!positive || !negative || *positive + *negative <= 0.0) return std::nullopt;
        return *positive / (*positive + *negative);
      }},
-    // Map entropy (Martin & Moravec 1996, named in paper 002) joins as one line here once the
-    // sweep measures it (a `--metric entropy` whose column sweep_csv.cpp names), lower is better:
-    //   {"entropy", "entropy", -1, [](const SetColumns& c) { return c.get("map_entropy"); }},
+    // Map entropy (Martin & Moravec 1996, named in paper 002): the bits of uncertainty left in the
+    // observed cells, Σ −p log2 p − (1 − p) log2 (1 − p). Lower is better: a map that has made up
+    // its mind (docs/metrics.md, "Map entropy"; it rewards confidence, not truth).
+    {"entropy", "entropy", -1, [](const SetColumns& c) { return c.get("map_entropy"); }},
 };
 
 struct ReferenceMeasure {
@@ -109,8 +110,8 @@ int runGoodnessStudy(Arguments& args) {
     Arguments probe = args;
     if (!probe.values("--metric").empty())
       throw UsageError(
-          "--metric does not go with goodness-study: it measures VSDNS, derivative noise, the "
-          "two-run agreement (with --second-log), IOP, correlation and AUC itself");
+          "--metric does not go with goodness-study: it measures VSDNS, derivative noise, map "
+          "entropy, the two-run agreement (with --second-log), IOP, correlation and AUC itself");
     if (!probe.value("--reference"))
       throw UsageError("goodness-study compares with a reference map; give --reference REF");
     secondLog = probe.value("--second-log").has_value();

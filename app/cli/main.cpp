@@ -34,7 +34,7 @@ commands:
                              deviation over the logs, on the cells all of them observed
   goodness --log FILE [map flags] [--second-log FILE] [--json]
                              map quality without a reference: VSDNS, derivative noise,
-                             two-run comparison
+                             map entropy, two-run comparison
   simulate --world WORLD.json --robot k2a|p3dx|amigobot
       --route in-motion|stop-and-scan|u-turn [--route-file FILE] [--stops N]
       [--duration S] [--seed N] [--drift on|off] --out LOG.sglog
@@ -54,7 +54,7 @@ commands:
                              record a live robot's sonar to a log as it streams
   sweep --log FILE [--second-log FILE] [--reference REF] [map flags]
       --grid "P=FROM:STEP:TO" | --grid "P=V1,V2,..." ... [--tie "P=1-Q"]...
-      --metric vsdns|derivative|two-run|iop|correlation|auc|... ...
+      --metric vsdns|derivative|entropy|two-run|iop|correlation|auc|... ...
       [--shard I/N] --csv OUT.csv [--json] [--progress]
                              one map per parameter set, rows streamed to a CSV that
                              resumes after Ctrl-C; shards for job arrays (docs/sweeps.md)

@@ -19,9 +19,9 @@ namespace sg::cli {
 
 // ---- the metrics a sweep can ask for (--metric)
 
-// Canonical names in column order: vsdns, derivative, two-run, then the reference metrics of
-// `score` (iop, correlation, ...). Each text may be a comma-separated list; "path" stands for both
-// path metrics. Duplicates are dropped. Throws UsageError naming an unknown metric.
+// Canonical names in column order: vsdns, derivative, entropy, two-run, then the reference metrics
+// of `score` (iop, correlation, ...). Each text may be a comma-separated list; "path" stands for
+// both path metrics. Duplicates are dropped. Throws UsageError naming an unknown metric.
 std::vector<std::string> parseSweepMetrics(const std::vector<std::string>& texts);
 bool isReferenceMetric(const std::string& name);
 // The CSV columns of the metrics (the JSON keys of `score --json` and `goodness --json`).

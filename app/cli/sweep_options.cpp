@@ -33,7 +33,7 @@ SweepOptions parseSweepOptions(Arguments& args, const std::vector<std::string>& 
   o.secondLog = args.value("--second-log");
   o.referencePath = args.value("--reference");
   if (metricTexts.empty())
-    throw UsageError("give at least one --metric (vsdns, derivative, two-run, iop, ...)");
+    throw UsageError("give at least one --metric (vsdns, derivative, entropy, two-run, iop, ...)");
   o.metrics = parseSweepMetrics(metricTexts);
   o.firstMetric =
       parseSweepMetrics({metricTexts.front().substr(0, metricTexts.front().find(','))}).front();

@@ -61,7 +61,7 @@ QStringList baseSweep() {
           "--tie",
           "p1=1-p4",
           "--metric",
-          "vsdns",
+          "vsdns,entropy",
           "--metric",
           "iop,correlation,auc"};
 }
@@ -98,6 +98,7 @@ class TstCliSweep : public QObject {
   void interruptedSweepResumes_data();
   void interruptedSweepResumes();
   void resumeRefusesOtherArguments();
+  void rowsEqualMapAndScore_data();
   void rowsEqualMapAndScore();
   void tieSetsParameter();
   void badValuesExit2_data();
@@ -125,6 +126,8 @@ void TstCliSweep::initTestCase() {
   QCOMPARE(json.value("rows").toInt(), 6);
   QVERIFY2(json.value("paper002").toObject().contains("optimal_histogram"), r.out);
   QVERIFY2(json.value("best").toObject().value("iop").toObject().contains("iop_mm"), r.out);
+  QVERIFY2(json.value("best").toObject().value("entropy").toObject().contains("map_entropy"),
+           r.out);
 }
 
 void TstCliSweep::shardsMergeToWholeSweep() {
@@ -215,31 +218,41 @@ void TstCliSweep::resumeRefusesOtherArguments() {
   QVERIFY2(s.finished && s.code == 2 && s.err.contains("shard 0/1"), describe(shard, s));
 }
 
+void TstCliSweep::rowsEqualMapAndScore_data() {
+  QTest::addColumn<int>("pick");  // the set's index in baseSweep() (p5 outer, p4 inner)
+  QTest::newRow("set 1: p5 6, p4 0.96") << 1;
+  QTest::newRow("set 4: p5 15, p4 0.96") << 4;
+}
+
 void TstCliSweep::rowsEqualMapAndScore() {
+  QFETCH(int, pick);
   QList<QByteArray> columns;
   const QList<QList<QByteArray>> rows = dataRows(whole_, &columns);
-  for (int pick : {1, 4}) {
-    const QList<QByteArray>& row = rows[pick];
-    QCOMPARE(row[0].toInt(), pick);
-    QStringList mapFlags{"--log", kRun1, "--model", "parameterized", "--rule", "bayes-recursive"};
-    for (const char* p : {"p1", "p2", "p3", "p4", "p5"})
-      mapFlags << "--set" << QString("%1=%2").arg(p, QString(row[columns.indexOf(p)]));
-    const QStringList score =
-        QStringList{"score", "--reference", kWorld, "--metrics", "iop,correlation,auc", "--json"}
-        << mapFlags;
-    const Run s = runCli(score);
-    QVERIFY2(s.finished && s.code == 0, describe(score, s));
-    const QJsonObject sj = QJsonDocument::fromJson(s.out).object();
-    for (const char* key : {"iop_mm", "correlation_pct", "auc"}) {
-      // Exact: the same map (bit-identical at any thread count) and the same metric code.
-      QCOMPARE(row[columns.indexOf(key)].toDouble(), sj.value(key).toDouble());
-    }
-    const QStringList goodness = QStringList{"goodness", "--json"} << mapFlags;
-    const Run g = runCli(goodness);
-    QVERIFY2(g.finished && g.code == 0, describe(goodness, g));
-    QCOMPARE(row[columns.indexOf("vsdns")].toDouble(),
-             QJsonDocument::fromJson(g.out).object().value("vsdns").toDouble());
+  for (const char* column : {"vsdns", "map_entropy", "iop_mm", "correlation_pct", "auc"})
+    QVERIFY2(columns.contains(column), column);
+  const QList<QByteArray>& row = rows[pick];
+  QCOMPARE(row[0].toInt(), pick);
+  QStringList mapFlags{"--log", kRun1, "--model", "parameterized", "--rule", "bayes-recursive"};
+  for (const char* p : {"p1", "p2", "p3", "p4", "p5"})
+    mapFlags << "--set" << QString("%1=%2").arg(p, QString(row[columns.indexOf(p)]));
+  const QStringList score =
+      QStringList{"score", "--reference", kWorld, "--metrics", "iop,correlation,auc", "--json"}
+      << mapFlags;
+  const Run s = runCli(score);
+  QVERIFY2(s.finished && s.code == 0, describe(score, s));
+  const QJsonObject sj = QJsonDocument::fromJson(s.out).object();
+  for (const char* key : {"iop_mm", "correlation_pct", "auc"}) {
+    // Exact: the same map (bit-identical at any thread count) and the same metric code.
+    QCOMPARE(row[columns.indexOf(key)].toDouble(), sj.value(key).toDouble());
   }
+  const QStringList goodness = QStringList{"goodness", "--json"} << mapFlags;
+  const Run g = runCli(goodness);
+  QVERIFY2(g.finished && g.code == 0, describe(goodness, g));
+  const QJsonObject gj = QJsonDocument::fromJson(g.out).object();
+  QCOMPARE(row[columns.indexOf("vsdns")].toDouble(), gj.value("vsdns").toDouble());
+  // The sweep's map_entropy is goodness's entropy_bits (Σ over the observed cells) of the same
+  // map, exactly.
+  QCOMPARE(row[columns.indexOf("map_entropy")].toDouble(), gj.value("entropy_bits").toDouble());
 }
 
 void TstCliSweep::tieSetsParameter() {

@@ -53,6 +53,7 @@ std::optional<SetEvaluation> evaluate(const SetEvaluationInput& in, const Parame
   if (in.measures.vsdns) out.vsdns = vsdns.result();
   const OccupancyMap first = mapper.snapshot();
   if (in.measures.derivative) out.derivative = derivativeNoise(first);
+  if (in.measures.entropy) out.entropy = mapEntropy(first);
   if (in.measures.twoRun) {
     Mapper again(in.secondRun->ring, in.settings.grid, ms);
     if (!mapRun(again, *in.secondRun, cancel, stop)) return std::nullopt;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // What a generic sweep (docs/sweeps.md) measures for each parameter set: any of paper 002's
-// goodness measures (VSDNS, derivative noise, two runs) and any reference metric of
+// goodness measures (VSDNS, derivative noise, two runs), map entropy and any reference metric of
 // reference_score.h, from one map of the log (and one of the second log for the two-run
 // comparison). And the runner that evaluates a list of sets on the thread policy's threads
 // (concurrency.h), each set on one thread, so that every set's result is the same at any count.
@@ -16,6 +16,7 @@
 #include "sonargrid/dataset.h"
 #include "sonargrid/grid_spec.h"
 #include "sonargrid/metrics/derivative_noise.h"
+#include "sonargrid/metrics/map_entropy.h"
 #include "sonargrid/metrics/reference_score.h"
 #include "sonargrid/metrics/two_run_comparison.h"
 #include "sonargrid/metrics/vsdns.h"
@@ -27,6 +28,7 @@ namespace sg {
 struct SetMeasures {
   bool vsdns = false;
   bool derivative = false;
+  bool entropy = false;        // map entropy (Martin & Moravec 1996) of the first run's map
   bool twoRun = false;         // needs a second run
   std::set<Metric> reference;  // needs a reference map
   ScoreOptions score;          // pairs and seed of the path metrics; metrics = `reference`
@@ -35,6 +37,7 @@ struct SetMeasures {
 struct SetEvaluation {
   std::optional<VsdnsAccumulator::Result> vsdns;
   std::optional<DerivativeNoise> derivative;
+  std::optional<MapEntropy> entropy;
   std::optional<TwoRunComparison> twoRun;
   std::optional<ReferenceScore> reference;
 };

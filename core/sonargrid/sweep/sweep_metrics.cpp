@@ -51,7 +51,7 @@ std::optional<Metric> referenceMetric(const std::string& name) {
   return std::nullopt;
 }
 
-const char* const kGoodness[] = {"vsdns", "derivative", "two-run"};
+const char* const kGoodness[] = {"vsdns", "derivative", "entropy", "two-run"};
 
 std::vector<std::string> splitCommas(const std::string& s) {
   std::vector<std::string> out;
@@ -84,7 +84,7 @@ std::vector<std::string> parseSweepMetrics(const std::vector<std::string>& texts
       const bool goodness =
           std::find(std::begin(kGoodness), std::end(kGoodness), name) != std::end(kGoodness);
       if (!goodness && !referenceMetric(name)) {
-        std::string names = "vsdns, derivative, two-run, path";
+        std::string names = "vsdns, derivative, entropy, two-run, path";
         for (Metric m : allMetrics()) names += std::string(", ") + metricName(m);
         throw SweepSpecError(
             "--metric: " +
@@ -117,6 +117,8 @@ std::vector<std::string> metricColumns(const std::vector<std::string>& metrics) 
     } else if (m == "derivative") {
       out.push_back("derivative_noise");
       out.push_back("derivative_noise_mean");
+    } else if (m == "entropy") {
+      out.push_back("map_entropy");  // `goodness --json`'s entropy_bits
     } else if (m == "two-run") {
       out.push_back("two_run_positive");
       out.push_back("two_run_negative");
@@ -132,6 +134,7 @@ SetMeasures measuresOf(const std::vector<std::string>& metrics) {
   for (const std::string& m : metrics) {
     if (m == "vsdns") s.vsdns = true;
     if (m == "derivative") s.derivative = true;
+    if (m == "entropy") s.entropy = true;
     if (m == "two-run") s.twoRun = true;
     if (const auto r = referenceMetric(m)) s.reference.insert(*r);
   }
@@ -147,6 +150,8 @@ std::vector<std::optional<double>> metricValues(const std::vector<std::string>& 
     } else if (m == "derivative") {
       out.push_back(e.derivative ? std::optional<double>(e.derivative->sum) : std::nullopt);
       out.push_back(e.derivative ? e.derivative->mean : std::nullopt);
+    } else if (m == "entropy") {
+      out.push_back(e.entropy ? std::optional<double>(e.entropy->observedBits) : std::nullopt);
     } else if (m == "two-run") {
       out.push_back(e.twoRun ? std::optional<double>(static_cast<double>(e.twoRun->positive))
                              : std::nullopt);

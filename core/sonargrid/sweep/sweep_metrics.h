@@ -2,8 +2,8 @@
 #pragma once
 // The metrics a generic sweep can measure (docs/sweeps.md, --metric), shared by `sonargrid-cli
 // sweep`/`optimize` and the app's sweep view so that both read one grammar and name the columns
-// alike: paper 002's goodness measures (vsdns, derivative, two-run) and every reference metric of
-// reference_score.h.
+// alike: paper 002's goodness measures (vsdns, derivative, two-run), map entropy (entropy, column
+// map_entropy) and every reference metric of reference_score.h.
 
 #include <optional>
 #include <string>
@@ -13,9 +13,9 @@
 
 namespace sg {
 
-// Canonical names in column order: vsdns, derivative, two-run, then the reference metrics of
-// `score` (iop, correlation, ...). Each text may be a comma-separated list; "path" stands for both
-// path metrics. Duplicates are dropped. Throws SweepSpecError (sweep_grid.h) naming an unknown
+// Canonical names in column order: vsdns, derivative, entropy, two-run, then the reference metrics
+// of `score` (iop, correlation, ...). Each text may be a comma-separated list; "path" stands for
+// both path metrics. Duplicates are dropped. Throws SweepSpecError (sweep_grid.h) naming an unknown
 // metric and listing the known ones.
 std::vector<std::string> parseSweepMetrics(const std::vector<std::string>& texts);
 // Every name parseSweepMetrics() accepts (without "path"), in column order.
