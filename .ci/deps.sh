@@ -15,6 +15,7 @@ packages=(
   libnlopt-cxx-dev                          # NLopt, the optimisers of sonargrid-cli optimize
   libqt6opengl6-dev                         # Qt 6 OpenGL / OpenGLWidgets (the grid view)
   qt6-svg-dev                               # QSvgGenerator (SVG export of the view)
+  qt6-charts-dev                            # Qt Charts (GPL-3.0): the sweep view's plots
   libgl-dev                                 # OpenGL headers for the grid view
   libgl1-mesa-dri                           # Mesa software rendering for the GL tests
   xvfb xauth                                # xvfb-run for the GL tests (ctest label gl)

@@ -12,55 +12,12 @@
 
 #include "arguments.h"
 #include "sonargrid/sweep/sweep_grid.h"
+#include "sonargrid/sweep/sweep_metrics.h"
 
 namespace sg::cli {
 namespace {
 
 constexpr const char* kMagic = "# sonargrid-cli sweep 1";
-
-// The JSON keys of `score --json` (docs/cli.md), which are the sweep's column names.
-const char* scoreKey(Metric m) {
-  switch (m) {
-    case Metric::Iop:
-      return "iop_mm";
-    case Metric::Correlation:
-      return "correlation_pct";
-    case Metric::MapScore:
-      return "map_score_pct";
-    case Metric::MapScoreOccupied:
-      return "map_score_occupied_pct";
-    case Metric::Match:
-      return "match_bits";
-    case Metric::PathFalsePositive:
-      return "path_false_positive_pct";
-    case Metric::PathFalseNegative:
-      return "path_false_negative_pct";
-    case Metric::CrossEntropy:
-      return "cross_entropy";
-    case Metric::Brier:
-      return "brier";
-    case Metric::Auc:
-      return "auc";
-    case Metric::Precision:
-      return "precision";
-    case Metric::Recall:
-      return "recall";
-    case Metric::F1:
-      return "f1";
-    case Metric::Iou:
-      return "iou";
-  }
-  return "?";
-}
-
-std::optional<Metric> referenceMetric(const std::string& name) {
-  for (Metric m : allMetrics()) {
-    if (name == metricName(m)) return m;
-  }
-  return std::nullopt;
-}
-
-const char* const kGoodness[] = {"vsdns", "derivative", "two-run"};
 
 std::uint64_t fnv1a(std::string_view bytes, std::uint64_t h = 1469598103934665603ULL) {
   for (unsigned char c : bytes) {
@@ -101,91 +58,31 @@ bool readSize(const std::string& t, std::size_t& v) {
 
 }  // namespace
 
+// The metric grammar is the core's (sonargrid/sweep/sweep_metrics.h), shared with the app's sweep
+// view; here its errors become usage errors.
 std::vector<std::string> parseSweepMetrics(const std::vector<std::string>& texts) {
-  std::vector<std::string> asked;
-  for (const std::string& text : texts) {
-    for (const std::string& name : splitCommas(text)) {
-      if (name == "path") {
-        asked.push_back(metricName(Metric::PathFalsePositive));
-        asked.push_back(metricName(Metric::PathFalseNegative));
-        continue;
-      }
-      const bool goodness =
-          std::find(std::begin(kGoodness), std::end(kGoodness), name) != std::end(kGoodness);
-      if (!goodness && !referenceMetric(name)) {
-        std::string names = "vsdns, derivative, two-run, path";
-        for (Metric m : allMetrics()) names += std::string(", ") + metricName(m);
-        throw UsageError(
-            "--metric: " +
-            (name.empty() ? std::string("an empty metric name") : "unknown metric '" + name + "'") +
-            "; choose from " + names);
-      }
-      asked.push_back(name);
-    }
+  try {
+    return sg::parseSweepMetrics(texts);
+  } catch (const SweepSpecError& e) {
+    throw UsageError(e.what());
   }
-  std::vector<std::string> out;
-  for (const char* g : kGoodness) {
-    if (std::find(asked.begin(), asked.end(), g) != asked.end()) out.push_back(g);
-  }
-  for (Metric m : allMetrics()) {
-    if (std::find(asked.begin(), asked.end(), metricName(m)) != asked.end())
-      out.push_back(metricName(m));
-  }
-  return out;
 }
 
 bool isReferenceMetric(const std::string& name) {
-  return referenceMetric(name).has_value();
+  return sg::isReferenceMetric(name);
 }
 
 std::vector<std::string> metricColumns(const std::vector<std::string>& metrics) {
-  std::vector<std::string> out;
-  for (const std::string& m : metrics) {
-    if (m == "vsdns") {
-      out.push_back("vsdns");
-    } else if (m == "derivative") {
-      out.push_back("derivative_noise");
-      out.push_back("derivative_noise_mean");
-    } else if (m == "two-run") {
-      out.push_back("two_run_positive");
-      out.push_back("two_run_negative");
-    } else if (const auto r = referenceMetric(m)) {
-      out.push_back(scoreKey(*r));
-    }
-  }
-  return out;
+  return sg::metricColumns(metrics);
 }
 
 SetMeasures measuresOf(const std::vector<std::string>& metrics) {
-  SetMeasures s;
-  for (const std::string& m : metrics) {
-    if (m == "vsdns") s.vsdns = true;
-    if (m == "derivative") s.derivative = true;
-    if (m == "two-run") s.twoRun = true;
-    if (const auto r = referenceMetric(m)) s.reference.insert(*r);
-  }
-  return s;
+  return sg::measuresOf(metrics);
 }
 
 std::vector<std::optional<double>> metricValues(const std::vector<std::string>& metrics,
                                                 const SetEvaluation& e) {
-  std::vector<std::optional<double>> out;
-  for (const std::string& m : metrics) {
-    if (m == "vsdns") {
-      out.push_back(e.vsdns ? e.vsdns->vsdns : std::nullopt);
-    } else if (m == "derivative") {
-      out.push_back(e.derivative ? std::optional<double>(e.derivative->sum) : std::nullopt);
-      out.push_back(e.derivative ? e.derivative->mean : std::nullopt);
-    } else if (m == "two-run") {
-      out.push_back(e.twoRun ? std::optional<double>(static_cast<double>(e.twoRun->positive))
-                             : std::nullopt);
-      out.push_back(e.twoRun ? std::optional<double>(static_cast<double>(e.twoRun->negative))
-                             : std::nullopt);
-    } else if (const auto r = referenceMetric(m)) {
-      out.push_back(e.reference ? e.reference->value(*r) : std::nullopt);
-    }
-  }
-  return out;
+  return sg::metricValues(metrics, e);
 }
 
 std::string SweepHeader::fingerprint() const {

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "sonargrid/sweep/optimal_sets.h"
+#include "sonargrid/sweep/sweep_metrics.h"
 
 namespace sg::cli {
 namespace {
@@ -51,20 +52,7 @@ Json indicesJson(const std::vector<SweepCsvRow>& rows, const std::vector<std::si
 }  // namespace
 
 int betterDirection(const std::string& column) {
-  static const char* const kHigher[] = {"correlation_pct",
-                                        "map_score_pct",
-                                        "map_score_occupied_pct",
-                                        "match_bits",
-                                        "auc",
-                                        "precision",
-                                        "recall",
-                                        "f1",
-                                        "iou",
-                                        "two_run_positive"};
-  for (const char* h : kHigher) {
-    if (column == h) return 1;
-  }
-  return -1;
+  return sg::betterDirection(column);
 }
 
 Json sweepReport(const SweepHeader& header, const std::vector<SweepCsvRow>& rows) {

@@ -25,6 +25,7 @@
 #include "document.h"
 #include "log_loader.h"
 #include "main_window_metrics.h"
+#include "main_window_sweep.h"
 #include "parameter_panel.h"
 #include "reference_editing.h"
 #include "remap_controller.h"
@@ -110,6 +111,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   installRobotMenu(this);
   installReferenceEditor(this);
   installMetrics(this);
+  installSweepView(this);
   restoreWindowState();
   connectDocument();
   mappedSettings_ = document_->mapperSettings();

@@ -29,16 +29,23 @@ struct PinnedRow {
   double cellSize = kDefaultCellSize;
 };
 
-// What a parameter sweep run from the app maps (core/sonargrid/sweep/parameter_sweep.h): one model
-// × rule over a named parameter grid, each set starting from `base`, judged with the second log as
-// the second run when `useSecondRun` is set.
+// What a parameter sweep run from the app maps (the sweep view, docs/user-guide.md "Sweeping
+// parameters"; the grammar of `sonargrid-cli sweep`, docs/sweeps.md): one model × rule over the
+// `axes` (--grid texts, first outermost), `ties` (--tie texts) and `metrics` (--metric names), each
+// set starting from `base`, judged with the second log as the second run when `useSecondRun` is
+// set. The defaults are paper 002 Table 1's grid (`parameterGrid` names it) measured by VSDNS.
 struct SweepPlan {
   std::string model = "parameterized";
   std::string rule = "bayes-recursive";
   PoseSource pose = PoseSource::Odometry;
-  std::string parameterGrid = "paper002-table1";  // the only grid today: paper 002 Table 1
+  std::string parameterGrid = "paper002-table1";  // the preset the axes started from
   std::map<std::string, double> base;             // values other than the grid's own
   bool useSecondRun = true;
+  // Paper 002 Table 1: P2, 2·P3 (P3 in metres), P4, P5 (footnote **) and P1 = 1 − P4 (footnote *).
+  std::vector<std::string> axes{"p2=0.05:0.05:0.2", "p3=0.25:0.25:1.5", "p4=0.95:0.01:0.98",
+                                "p5=6,7,8,10,13,14,15,16,17,18,20,25,27,35,40"};
+  std::vector<std::string> ties{"p1=1-p4"};
+  std::vector<std::string> metrics{"vsdns"};
 };
 
 struct ProjectState {
@@ -63,7 +70,9 @@ inline bool operator==(const PinnedRow& a, const PinnedRow& b) {
 
 inline bool operator==(const SweepPlan& a, const SweepPlan& b) {
   return a.model == b.model && a.rule == b.rule && a.pose == b.pose &&
-         a.parameterGrid == b.parameterGrid && a.base == b.base && a.useSecondRun == b.useSecondRun;
+         a.parameterGrid == b.parameterGrid && a.base == b.base &&
+         a.useSecondRun == b.useSecondRun && a.axes == b.axes && a.ties == b.ties &&
+         a.metrics == b.metrics;
 }
 
 inline bool sameSettings(const MapperSettings& a, const MapperSettings& b) {

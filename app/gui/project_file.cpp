@@ -13,6 +13,8 @@
 #include "sonargrid/reference/read_reference.h"
 #include "sonargrid/reference/reference_json.h"
 #include "sonargrid/rules/update_rule.h"
+#include "sonargrid/sweep/sweep_grid.h"
+#include "sonargrid/sweep/sweep_metrics.h"
 
 namespace sg::app {
 namespace {
@@ -192,10 +194,18 @@ QByteArray projectJson(const ProjectState& state, const QString& projectPath, Pr
   QJsonObject base;
   for (const auto& [name, value] : state.sweep.base)
     base.insert(QString::fromStdString(name), value);
+  auto texts = [](const std::vector<std::string>& list) {
+    QJsonArray a;
+    for (const std::string& t : list) a.append(QString::fromStdString(t));
+    return a;
+  };
   root.insert("sweep", QJsonObject{{"model", QString::fromStdString(state.sweep.model)},
                                    {"rule", QString::fromStdString(state.sweep.rule)},
                                    {"pose", poseText(state.sweep.pose)},
                                    {"grid", QString::fromStdString(state.sweep.parameterGrid)},
+                                   {"axes", texts(state.sweep.axes)},
+                                   {"ties", texts(state.sweep.ties)},
+                                   {"metrics", texts(state.sweep.metrics)},
                                    {"base", base},
                                    {"use_second_run", state.sweep.useSecondRun}});
   return QJsonDocument(root).toJson(QJsonDocument::Indented);
@@ -328,6 +338,30 @@ ProjectState parseProject(const QByteArray& text, const QString& projectPath) {
     if (!second.isUndefined() && !second.isBool())
       r.fail(QStringLiteral("sweep.use_second_run"), QStringLiteral("expected true or false"));
     s.sweep.useSecondRun = second.toBool(true);
+    // The sweep view's choice, in `sonargrid-cli sweep`'s grammar, checked as the CLI checks it.
+    const ParameterSet declared = defaultParameters(s.sweep.model, s.sweep.rule);
+    auto readTexts = [&](const QString& key, std::vector<std::string>& out, auto check) {
+      if (sweep.value(key).isUndefined()) return;
+      const QJsonArray list = r.array(sweep, f, key);
+      out.clear();
+      for (qsizetype i = 0; i < list.size(); ++i) {
+        const QString field = QStringLiteral("sweep.%1[%2]").arg(key).arg(i);
+        if (!list[i].isString()) r.fail(field, QStringLiteral("expected a string"));
+        const std::string item = list[i].toString().toStdString();
+        try {
+          check(item);
+        } catch (const std::exception& e) {
+          r.fail(field, QString::fromUtf8(e.what()));
+        }
+        out.push_back(item);
+      }
+    };
+    readTexts(QStringLiteral("axes"), s.sweep.axes,
+              [&](const std::string& t) { (void)parseSweepAxis(t, declared); });
+    readTexts(QStringLiteral("ties"), s.sweep.ties,
+              [&](const std::string& t) { (void)parseSweepTie(t, declared); });
+    readTexts(QStringLiteral("metrics"), s.sweep.metrics,
+              [](const std::string& t) { (void)parseSweepMetrics({t}); });
   }
   return s;
 }

@@ -1,0 +1,392 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The sweep view (docs/user-guide.md, "Sweeping parameters") on a Document: a 12-set sweep of the
+// bundled room log (parameterized × bayes-recursive, P2 × P5 = 3 × 4) whose rows equal the core's
+// evaluateSet() of the same sets at 1 and 2 threads; the best set by each of paper 002's rules
+// applied as one undo step; a cancelled sweep leaving only finished, correct rows; a view deleted
+// mid-sweep; the choice saved as the Document's sweep settings and in the project file.
+
+#include <QAction>
+#include <QDir>
+#include <QElapsedTimer>
+#include <QMenu>
+#include <QPushButton>
+#include <QSettings>
+#include <QSignalSpy>
+#include <QStandardPaths>
+#include <QTableWidget>
+#include <QUndoStack>
+#include <QtTest>
+#include <memory>
+
+#include "document.h"
+#include "main_window.h"
+#include "main_window_sweep.h"
+#include "project_file.h"
+#include "sonargrid/concurrency.h"
+#include "sonargrid/io/sglog.h"
+#include "sonargrid/sweep/sweep_grid.h"
+#include "sonargrid/sweep/sweep_metrics.h"
+#include "sweep_view.h"
+#include "sweep_view_charts.h"
+#include "sweep_view_model.h"
+#include "sweep_view_runner.h"
+
+using namespace sg;
+using namespace sg::app;
+
+namespace {
+
+const QString kRoom = QStringLiteral(SONARGRID_DATASETS "/room/room.sglog");
+constexpr double kCell = 0.1;
+constexpr int kWaitMs = 600000;
+
+std::vector<std::string> strings(const QStringList& list) {
+  std::vector<std::string> out;
+  for (const QString& s : list) out.push_back(s.toStdString());
+  return out;
+}
+
+MapperSettings parameterizedBayes() {
+  MapperSettings s;
+  s.model = "parameterized";
+  s.rule = "bayes-recursive";
+  s.parameters = defaultParameters(s.model, s.rule);
+  s.pose = PoseSource::Odometry;
+  return s;
+}
+
+// What the core gives for every set, independently of the view: sweepSets() over the axes and
+// ties, and evaluateSet() of each on the log's fitting grid (as `sonargrid-cli sweep` does).
+struct CoreSweep {
+  std::vector<ParameterSet> sets;
+  std::vector<std::vector<std::optional<double>>> values;
+};
+
+CoreSweep coreSweep(const Dataset& data, const ui::SweepChoice& c) {
+  const MapperSettings s = parameterizedBayes();
+  std::vector<SweepAxis> axes;
+  for (const std::string& a : c.axes) axes.push_back(parseSweepAxis(a, s.parameters));
+  std::vector<SweepTie> ties;
+  for (const std::string& t : c.ties) ties.push_back(parseSweepTie(t, s.parameters));
+  CoreSweep out;
+  out.sets = sweepSets(s.parameters, axes, ties);
+  SetEvaluationInput in;
+  in.run = &data;
+  in.settings.model = s.model;
+  in.settings.rule = s.rule;
+  in.settings.pose = s.pose;
+  in.settings.grid = data.fittingGrid(s.pose, kCell);
+  in.measures = measuresOf(c.metrics);
+  for (const ParameterSet& set : out.sets)
+    out.values.push_back(metricValues(c.metrics, *evaluateSet(in, set)));
+  return out;
+}
+
+// The 12-set sweep of the brief: P2 ∈ {0.05, 0.1, 0.15} (outer) × P5 ∈ {6, 8, 10, 13} (inner).
+ui::SweepChoice p2ByP5() {
+  return {{"p2=0.05:0.05:0.15", "p5=6,8,10,13"}, {}, {"vsdns", "derivative"}};
+}
+
+void compareRows(const ui::SweepResultsModel& model, const CoreSweep& core, bool allFinished) {
+  QCOMPARE(model.sets().size(), core.sets.size());
+  for (std::size_t i = 0; i < core.sets.size(); ++i) {
+    QVERIFY(model.sets()[i] == core.sets[i]);
+    const auto& row = model.results()[i];
+    if (!row) {
+      QVERIFY2(!allFinished, qPrintable(QStringLiteral("set %1 not evaluated").arg(i)));
+      continue;
+    }
+    QCOMPARE(row->size(), core.values[i].size());
+    for (std::size_t c = 0; c < row->size(); ++c) {
+      QCOMPARE((*row)[c].has_value(), core.values[i][c].has_value());
+      if ((*row)[c]) QCOMPARE(*(*row)[c], *core.values[i][c]);  // bit-identical
+    }
+  }
+}
+
+}  // namespace
+
+class TestSweepView : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void initTestCase() {
+    QStandardPaths::setTestModeEnabled(true);  // the window's QSettings go to a scratch location
+    QCoreApplication::setOrganizationName("SonarGridTest");
+    QCoreApplication::setApplicationName("tst_sweep_view");
+    QSettings().clear();
+    data_ = std::make_shared<const Dataset>(readSglog(kRoom.toStdString()));
+    core_ = coreSweep(*data_, p2ByP5());
+  }
+
+  void init() {
+    document_ = std::make_unique<Document>();
+    document_->setLog(kRoom, data_);
+    document_->setMapperSettings(parameterizedBayes());
+    document_->setCellSize(kCell);
+    document_->undoStack()->clear();
+    view_ = std::make_unique<ui::SweepView>();
+    connectSweepView(view_.get(), document_.get());
+    view_->setChoice(p2ByP5());
+  }
+
+  void cleanup() {
+    view_.reset();
+    document_.reset();
+  }
+
+  void twelveSetsEqualTheCore_data() {
+    QTest::addColumn<unsigned>("threads");
+    QTest::newRow("1 thread") << 1u;
+    QTest::newRow("2 threads") << 2u;
+  }
+
+  void twelveSetsEqualTheCore() {
+    QFETCH(unsigned, threads);
+    const ScopedThreadCount count(threads);
+    QVERIFY2(view_->run(), qPrintable(view_->statusText()));
+    QVERIFY(view_->isRunning());
+    QVERIFY(view_->waitForSweep(kWaitMs));
+    const ui::SweepResultsModel& model = *view_->results();
+    QCOMPARE(model.rowCount(), 12);
+    QCOMPARE(model.finishedCount(), std::size_t{12});
+    compareRows(model, core_, true);
+    // The sets in sweep order, by hand: set 5 = (P2 index 1, P5 index 1) = (0.1, 8); set 11 =
+    // (0.15, 13); P1 stays at its default, as no tie sets it.
+    QCOMPARE(model.sets()[5].get("p2"), 0.1);
+    QCOMPARE(model.sets()[5].get("p5"), 8.0);
+    QCOMPARE(model.sets()[11].get("p2"), 0.15);
+    QCOMPARE(model.sets()[11].get("p5"), 13.0);
+    QCOMPARE(model.sets()[11].get("p1"), parameterizedBayes().parameters.get("p1"));
+    // Columns as `sonargrid-cli sweep --metric vsdns --metric derivative` names them.
+    QCOMPARE(model.columns(),
+             (std::vector<std::string>{"vsdns", "derivative_noise", "derivative_noise_mean"}));
+    // The plots: one per swept parameter and a 14-bin histogram (paper 002 Fig. 7) of the
+    // 12 sets.
+    auto* charts = view_->findChild<ui::SweepCharts*>(QStringLiteral("sweepCharts"));
+    QVERIFY(charts);
+    QCOMPARE(charts->parameterChartTitles(),
+             (QStringList{QStringLiteral("vsdns against p2"), QStringLiteral("vsdns against p5")}));
+    QCOMPARE(charts->histogramCounts().size(), std::size_t{14});
+    std::size_t total = 0;
+    for (std::size_t n : charts->histogramCounts()) total += n;
+    QCOMPARE(total, std::size_t{12});
+    QVERIFY(view_->statusText().contains(QStringLiteral("Swept 12 sets")));
+  }
+
+  void applyBestIsOneUndoStep_data() {
+    QTest::addColumn<int>("rule");
+    QTest::newRow("lowest bin") << static_cast<int>(ui::SweepView::BestRule::LowestBin);
+    QTest::newRow("minimum") << static_cast<int>(ui::SweepView::BestRule::Minimum);
+    QTest::newRow("nearest mean") << static_cast<int>(ui::SweepView::BestRule::NearestMean);
+  }
+
+  void applyBestIsOneUndoStep() {
+    QFETCH(int, rule);
+    QVERIFY(view_->run());
+    QVERIFY(view_->waitForSweep(kWaitMs));
+    QVERIFY(view_->setPlotColumn(QStringLiteral("vsdns")));
+    QVERIFY(view_->setBestRule(static_cast<ui::SweepView::BestRule>(rule)));
+    // Paper 002's rule over the core's VSDNS of the same sets (optimal_sets.h).
+    std::vector<std::optional<double>> vsdns;
+    for (const auto& v : core_.values) vsdns.push_back(v[0]);
+    const OptimalSet expected = rule == static_cast<int>(ui::SweepView::BestRule::LowestBin)
+                                    ? lowestBinAverage(vsdns, core_.sets)
+                                : rule == static_cast<int>(ui::SweepView::BestRule::Minimum)
+                                    ? minimumVsdns(vsdns, core_.sets)
+                                    : nearestMeanVsdns(vsdns, core_.sets);
+    const MapperSettings before = document_->mapperSettings();
+    QSignalSpy settings(document_.get(), &Document::settingsChanged);
+    auto* apply = view_->findChild<QPushButton*>(QStringLiteral("applyBest"));
+    QVERIFY(apply && apply->isEnabled());
+    QTest::mouseClick(apply, Qt::LeftButton);
+    QCOMPARE(settings.count(), 1);  // the window re-maps on it
+    QCOMPARE(document_->undoStack()->count(), 1);
+    QVERIFY(document_->mapperSettings().parameters == expected.parameters);
+    QCOMPARE(document_->mapperSettings().model, std::string("parameterized"));
+    QCOMPARE(document_->mapperSettings().rule, std::string("bayes-recursive"));
+    document_->undoStack()->undo();
+    QVERIFY(sameSettings(document_->mapperSettings(), before));
+    document_->undoStack()->redo();
+    QVERIFY(document_->mapperSettings().parameters == expected.parameters);
+  }
+
+  void pinRows() {
+    QVERIFY(view_->run());
+    QVERIFY(view_->waitForSweep(kWaitMs));
+    QVERIFY(view_->pinRow(5));
+    QVERIFY(view_->pinBest());
+    QCOMPARE(document_->pinnedRows().size(), std::size_t{2});
+    QVERIFY(document_->pinnedRows()[0].settings.parameters == core_.sets[5]);
+    QCOMPARE(document_->pinnedRows()[0].cellSize, kCell);
+    QVERIFY(document_->pinnedRows()[0].label.contains(QStringLiteral("p2=0.1, p5=8")));
+    QCOMPARE(document_->undoStack()->count(), 2);  // each pin one step
+  }
+
+  void cancelLeavesAConsistentState_data() {
+    QTest::addColumn<bool>("afterFirstSet");
+    QTest::newRow("at once") << false;
+    QTest::newRow("after the first set") << true;
+  }
+
+  void cancelLeavesAConsistentState() {
+    QFETCH(bool, afterFirstSet);
+    const ScopedThreadCount count(1);
+    QVERIFY(view_->run());
+    QMetaObject::Connection c;
+    if (afterFirstSet)
+      c = connect(view_->results(), &QAbstractItemModel::dataChanged, view_.get(),
+                  [this] { view_->cancel(); });
+    else
+      view_->cancel();
+    QVERIFY(view_->waitForSweep(kWaitMs));
+    disconnect(c);
+    const ui::SweepResultsModel& model = *view_->results();
+    QVERIFY(!view_->isRunning());
+    QVERIFY2(model.finishedCount() < 12, "a cancelled sweep stopped before its last set");
+    if (afterFirstSet) QVERIFY(model.finishedCount() >= 1);
+    compareRows(model, core_, false);  // every finished row is whole and right
+    QVERIFY(view_->statusText().startsWith(QStringLiteral("Cancelled after")));
+    QVERIFY(view_->findChild<QPushButton*>(QStringLiteral("runSweep"))->isEnabled());
+    QVERIFY(!view_->findChild<QPushButton*>(QStringLiteral("cancelSweep"))->isEnabled());
+    QCOMPARE(document_->undoStack()->count(), 0);  // nothing applied
+    // The view runs again from there.
+    QVERIFY(view_->run());
+    QVERIFY(view_->waitForSweep(kWaitMs));
+    compareRows(*view_->results(), core_, true);
+  }
+
+  void deletingMidSweepStopsIt() {
+    QVERIFY(view_->run());
+    QVERIFY(view_->isRunning());
+    view_.reset();  // cancels and joins: returns, and nothing arrives afterwards
+    QTest::qWait(50);
+    QVERIFY(!view_);
+  }
+
+  void menuEntryAndClosingTheAppMidSweep() {
+    auto window = std::make_unique<MainWindow>(ui::GridView::Backend::Raster);
+    window->setCellSize(kCell);
+    window->setMapperSettings(parameterizedBayes());
+    QVERIFY(window->openLog(kRoom, true));
+    auto* action = window->findChild<QAction*>(QStringLiteral("sweepAction"));
+    QVERIFY(action);
+    QCOMPARE(action->shortcut(), QKeySequence(QStringLiteral("Ctrl+Shift+W")));
+    bool inMappingMenu = false;
+    for (QObject* o : action->associatedObjects())
+      if (auto* menu = qobject_cast<QMenu*>(o)) inMappingMenu |= menu->title() == tr("&Mapping");
+    QVERIFY(inMappingMenu);
+    auto* view = window->findChild<ui::SweepView*>(QStringLiteral("sweepView"));
+    QVERIFY(view && !view->isVisible());
+    action->trigger();
+    QVERIFY(view->isVisible());
+    view->setChoice(p2ByP5());
+    QVERIFY2(view->run(), qPrintable(view->statusText()));
+    // The window goes while the sets are mapped: the view cancels and joins its threads.
+    window.reset();
+    QVERIFY(!window);
+  }
+
+  void choiceIsTheDocumentsSweepSettings() {
+    auto* table = view_->findChild<QTableWidget*>(QStringLiteral("sweepParameters"));
+    QVERIFY(table);
+    int p3 = -1;
+    for (int r = 0; r < table->rowCount(); ++r)
+      if (table->item(r, 0)->data(Qt::UserRole).toString() == QStringLiteral("p3")) p3 = r;
+    QVERIFY(p3 >= 0);
+    // The user ticks P3 and types its values: one undoable edit of the document's settings.
+    table->item(p3, 4)->setText(QStringLiteral("0.25,0.5"));
+    table->item(p3, 0)->setCheckState(Qt::Checked);
+    const std::vector<std::string> axes{"p2=0.05:0.05:0.15", "p3=0.25,0.5", "p5=6,8,10,13"};
+    QCOMPARE(document_->sweep().axes, axes);
+    QCOMPARE(document_->sweep().metrics, (std::vector<std::string>{"vsdns", "derivative"}));
+    QCOMPARE(document_->sweep().model, std::string("parameterized"));
+    QVERIFY(document_->undoStack()->count() >= 1);
+    // Saved and read back with the project.
+    const QString path = QDir::temp().filePath(QStringLiteral("tst_sweep_view.sgproj"));
+    const ProjectState read = parseProject(projectJson(document_->state(), path), path);
+    QVERIFY(read.sweep == document_->sweep());
+    // Undo shows the choice before.
+    while (document_->undoStack()->canUndo()) document_->undoStack()->undo();
+    QCOMPARE(view_->choice().axes, SweepPlan{}.axes);
+  }
+
+  void badChoicesAreRefusedWithTheReason_data() {
+    QTest::addColumn<QStringList>("axes");
+    QTest::addColumn<QStringList>("ties");
+    QTest::addColumn<QString>("reason");
+    // parameterized declares P2 in [0, 0.5] (its ParameterSpec, docs/models.md): 0.7 is outside.
+    QTest::newRow("out of range") << QStringList{"p2=0.2,0.7"} << QStringList{} << "p2";
+    QTest::newRow("tie of a swept parameter")
+        << QStringList{"p4=0.95,0.96"} << QStringList{"p4=1-p1"} << "p4";
+    QTest::newRow("no axis") << QStringList{} << QStringList{} << "Tick a parameter";
+  }
+
+  void badChoicesAreRefusedWithTheReason() {
+    QFETCH(QStringList, axes);
+    QFETCH(QStringList, ties);
+    QFETCH(QString, reason);
+    view_->setChoice({strings(axes), strings(ties), {"vsdns"}});
+    QVERIFY(!view_->run());
+    QVERIFY(!view_->isRunning());
+    QVERIFY2(view_->statusText().contains(reason), qPrintable(view_->statusText()));
+  }
+
+  void badSweepSettingsInAProjectAreNamed_data() {
+    QTest::addColumn<QString>("sweep");
+    QTest::addColumn<QString>("field");
+    // P2 is declared in [0, 0.5]; p9 is no parameter of parameterized × bayes-recursive.
+    QTest::newRow("axis out of range") << R"("axes": ["p2=0.1,0.7"])"
+                                       << "sweep.axes[0]";
+    QTest::newRow("axis not a string") << R"("axes": ["p2=0.1", 3])"
+                                       << "sweep.axes[1]";
+    QTest::newRow("unknown tie") << R"("ties": ["p9=1-p4"])"
+                                 << "sweep.ties[0]";
+    QTest::newRow("unknown metric") << R"("metrics": ["vsdns", "nonsense"])"
+                                    << "sweep.metrics[1]";
+  }
+
+  void badSweepSettingsInAProjectAreNamed() {
+    QFETCH(QString, sweep);
+    QFETCH(QString, field);
+    const QByteArray text =
+        QStringLiteral(
+            R"({"format": "sonargrid-project", "version": 1, "log": "room.sglog",
+                "mapping": {"model": "hpf", "rule": "addition", "pose": "odom", "cell": 0.05},
+                "sweep": {"model": "parameterized", "rule": "bayes-recursive", "pose": "odom",
+                          %1}})")
+            .arg(sweep)
+            .toUtf8();
+    try {
+      (void)parseProject(text, QDir::temp().filePath(QStringLiteral("bad.sgproj")));
+      QFAIL("the project was accepted");
+    } catch (const ProjectError& e) {
+      QVERIFY2(QString::fromUtf8(e.what()).contains(field), e.what());
+    }
+  }
+
+  // Not a check: with SONARGRID_SWEEP_SCREENSHOT=FILE (under xvfb-run), saves the view after a
+  // 32-set sweep for docs/images/sweep-view.png.
+  void screenshotForTheUserGuide() {
+    const QString file = qEnvironmentVariable("SONARGRID_SWEEP_SCREENSHOT");
+    if (file.isEmpty()) QSKIP("SONARGRID_SWEEP_SCREENSHOT is not set");
+    view_->setChoice(
+        {{"p2=0.05:0.05:0.2", "p5=6,8,10,13,15,20,25,30"}, {}, {"vsdns", "derivative"}});
+    view_->resize(1280, 860);
+    view_->show();
+    QVERIFY(QTest::qWaitForWindowExposed(view_.get()));
+    QVERIFY(view_->run());
+    QVERIFY(view_->waitForSweep(kWaitMs));
+    QTest::qWait(300);
+    QVERIFY(view_->grab().save(file));
+  }
+
+ private:
+  std::shared_ptr<const Dataset> data_;
+  CoreSweep core_;
+  std::unique_ptr<Document> document_;
+  std::unique_ptr<ui::SweepView> view_;
+};
+
+QTEST_MAIN(TestSweepView)
+#include "tst_sweep_view.moc"

@@ -1,0 +1,765 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "sweep_view.h"
+
+#include <QCloseEvent>
+#include <QComboBox>
+#include <QCoreApplication>
+#include <QElapsedTimer>
+#include <QEventLoop>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QItemSelectionModel>
+#include <QLabel>
+#include <QLineEdit>
+#include <QListWidget>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QRegularExpression>
+#include <QSplitter>
+#include <QTableView>
+#include <QTableWidget>
+#include <QTimer>
+#include <QVBoxLayout>
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include "sonargrid/concurrency.h"
+#include "sonargrid/sweep/sweep_grid.h"
+#include "sonargrid/sweep/sweep_metrics.h"
+#include "sweep_view_charts.h"
+#include "sweep_view_model.h"
+#include "sweep_view_runner.h"
+
+namespace sg::ui {
+namespace {
+
+enum ParameterColumn { kSweepColumn, kUnitColumn, kRangeColumn, kBaseColumn, kValuesColumn };
+
+QString qs(const std::string& s) {
+  return QString::fromStdString(s);
+}
+
+// "p=text" split at the first '='.
+std::pair<std::string, std::string> splitAxis(const std::string& axis) {
+  const auto eq = axis.find('=');
+  if (eq == std::string::npos) return {axis, {}};
+  return {axis.substr(0, eq), axis.substr(eq + 1)};
+}
+
+// Four values spread over the declared range, a start the user edits.
+std::string suggestedValues(const ParameterSpec& spec) {
+  std::vector<double> values;
+  for (int k = 0; k < 4; ++k) {
+    double v = spec.min + (spec.max - spec.min) * k / 3.0;
+    if (spec.integer) {
+      v = std::round(v);
+    } else if (v != 0.0) {
+      const double scale = std::pow(10.0, 2.0 - std::floor(std::log10(std::abs(v))));
+      v = std::clamp(std::round(v * scale) / scale, spec.min, spec.max);
+    }
+    if (std::find(values.begin(), values.end(), v) == values.end()) values.push_back(v);
+  }
+  std::string out;
+  for (double v : values) out += (out.empty() ? "" : ",") + shortestText(v);
+  return out;
+}
+
+// "1 set", "12 sets" (the app ships no translations, so %n plurals would print "set(s)").
+QString setsText(std::size_t n) {
+  return n == 1 ? SweepView::tr("1 set") : SweepView::tr("%1 sets").arg(n);
+}
+
+std::vector<std::string> splitTies(const QString& text) {
+  std::vector<std::string> out;
+  for (const QString& part :
+       text.split(QRegularExpression(QStringLiteral("[;,]")), Qt::SkipEmptyParts)) {
+    const QString t = part.trimmed();
+    if (!t.isEmpty()) out.push_back(t.toStdString());
+  }
+  return out;
+}
+
+}  // namespace
+
+SweepView::SweepView(QWidget* parent) : QWidget(parent) {
+  setObjectName(QStringLiteral("sweepView"));
+  setWindowTitle(tr("Parameter Sweep"));
+  runner_ = new SweepRunner(this);
+  connect(runner_, &SweepRunner::setFinished, this, &SweepView::onSetFinished);
+  connect(runner_, &SweepRunner::finished, this, &SweepView::onFinished);
+  plotTimer_ = new QTimer(this);
+  plotTimer_->setSingleShot(true);
+  plotTimer_->setInterval(250);
+  connect(plotTimer_, &QTimer::timeout, this, [this] {
+    refreshPlots();
+    refreshBest();
+  });
+  buildForm();
+  choice_.metrics = {"vsdns"};
+  showChoice();
+}
+
+SweepView::~SweepView() {
+  // The runner (a child) cancels and joins in its destructor; stop it first so that no set
+  // finishing now reaches a half-destroyed view.
+  runner_->cancel();
+  delete runner_;
+  runner_ = nullptr;
+}
+
+void SweepView::buildForm() {
+  header_ = new QLabel(this);
+  header_->setObjectName(QStringLiteral("sweepHeader"));
+  header_->setWordWrap(true);
+
+  parameters_ = new QTableWidget(0, 5, this);
+  parameters_->setObjectName(QStringLiteral("sweepParameters"));
+  parameters_->setHorizontalHeaderLabels(
+      {tr("Sweep"), tr("Unit"), tr("Range"), tr("Now"), tr("Values (a:step:b or v1,v2,…)")});
+  parameters_->verticalHeader()->hide();
+  parameters_->horizontalHeader()->setStretchLastSection(true);
+  parameters_->setSelectionMode(QAbstractItemView::NoSelection);
+  parameters_->setToolTip(
+      tr("Tick the parameters to sweep and give their values; the first ticked row is the "
+         "outermost loop"));
+  connect(parameters_, &QTableWidget::itemChanged, this, [this] {
+    if (!updating_) readForm();
+  });
+
+  ties_ = new QLineEdit(this);
+  ties_->setObjectName(QStringLiteral("sweepTies"));
+  ties_->setPlaceholderText(tr("e.g. p1=1-p4; several separated by ;"));
+  ties_->setToolTip(tr("Parameters set from others for every set: C, P, C-P, C+P or C*P"));
+  connect(ties_, &QLineEdit::editingFinished, this, [this] {
+    if (!updating_) readForm();
+  });
+
+  metrics_ = new QListWidget(this);
+  metrics_->setObjectName(QStringLiteral("sweepMetrics"));
+  metrics_->setMaximumHeight(120);
+  for (const std::string& m : allSweepMetrics()) {
+    auto* item = new QListWidgetItem(qs(m), metrics_);
+    item->setData(Qt::UserRole, qs(m));
+    item->setFlags(Qt::ItemIsUserCheckable | Qt::ItemIsEnabled);
+    item->setCheckState(Qt::Unchecked);
+  }
+  metrics_->setFlow(QListView::LeftToRight);
+  metrics_->setWrapping(true);
+  metrics_->setResizeMode(QListView::Adjust);
+  connect(metrics_, &QListWidget::itemChanged, this, [this] {
+    if (!updating_) readForm();
+  });
+
+  setCount_ = new QLabel(this);
+  setCount_->setObjectName(QStringLiteral("sweepSetCount"));
+  runButton_ = new QPushButton(tr("&Run Sweep"), this);
+  runButton_->setObjectName(QStringLiteral("runSweep"));
+  cancelButton_ = new QPushButton(tr("&Cancel"), this);
+  cancelButton_->setObjectName(QStringLiteral("cancelSweep"));
+  progress_ = new QProgressBar(this);
+  progress_->setObjectName(QStringLiteral("sweepProgress"));
+  progress_->setFormat(tr("%v / %m sets"));
+  progress_->setRange(0, 1);
+  progress_->setValue(0);
+  status_ = new QLabel(this);
+  status_->setObjectName(QStringLiteral("sweepStatus"));
+  status_->setWordWrap(true);
+  status_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  connect(runButton_, &QPushButton::clicked, this, [this] { run(); });
+  connect(cancelButton_, &QPushButton::clicked, this, &SweepView::cancel);
+
+  auto* form = new QWidget(this);
+  auto* formLayout = new QVBoxLayout(form);
+  formLayout->setContentsMargins(0, 0, 0, 0);
+  formLayout->addWidget(header_);
+  formLayout->addWidget(new QLabel(tr("Parameters (declared by the model and the rule):"), form));
+  formLayout->addWidget(parameters_, 1);
+  auto* tieLabel = new QLabel(tr("&Ties:"), form);
+  tieLabel->setBuddy(ties_);
+  auto* tieRow = new QHBoxLayout;
+  tieRow->addWidget(tieLabel);
+  tieRow->addWidget(ties_, 1);
+  formLayout->addLayout(tieRow);
+  formLayout->addWidget(new QLabel(tr("Metrics:"), form));
+  formLayout->addWidget(metrics_);
+  auto* runRow = new QHBoxLayout;
+  runRow->addWidget(setCount_);
+  runRow->addStretch(1);
+  runRow->addWidget(runButton_);
+  runRow->addWidget(cancelButton_);
+  formLayout->addLayout(runRow);
+  formLayout->addWidget(progress_);
+  formLayout->addWidget(status_);
+
+  model_ = new SweepResultsModel(this);
+  table_ = new QTableView(this);
+  table_->setObjectName(QStringLiteral("sweepResults"));
+  table_->setModel(model_);
+  table_->verticalHeader()->hide();
+  table_->setSelectionBehavior(QAbstractItemView::SelectRows);
+  table_->setSelectionMode(QAbstractItemView::ExtendedSelection);
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  connect(table_, &QTableView::doubleClicked, this,
+          [this](const QModelIndex& index) { applyRow(static_cast<std::size_t>(index.row())); });
+
+  plotColumn_ = new QComboBox(this);
+  plotColumn_->setObjectName(QStringLiteral("plotMetric"));
+  bestRule_ = new QComboBox(this);
+  bestRule_->setObjectName(QStringLiteral("bestRule"));
+  connect(plotColumn_, &QComboBox::currentIndexChanged, this, [this] {
+    if (updating_) return;
+    refillBestRules();
+    refreshPlots();
+    refreshBest();
+  });
+  connect(bestRule_, &QComboBox::currentIndexChanged, this, [this] {
+    if (!updating_) refreshBest();
+  });
+  bestLabel_ = new QLabel(this);
+  bestLabel_->setObjectName(QStringLiteral("bestSet"));
+  bestLabel_->setWordWrap(true);
+  bestLabel_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  applyBest_ = new QPushButton(tr("&Apply Best"), this);
+  applyBest_->setObjectName(QStringLiteral("applyBest"));
+  applyBest_->setToolTip(tr("Make the best set the document's parameters (one undo step)"));
+  pinBest_ = new QPushButton(tr("Pin Best"), this);
+  pinBest_->setObjectName(QStringLiteral("pinBest"));
+  applySelected_ = new QPushButton(tr("Apply Selected"), this);
+  applySelected_->setObjectName(QStringLiteral("applySelected"));
+  pinSelected_ = new QPushButton(tr("&Pin Selected"), this);
+  pinSelected_->setObjectName(QStringLiteral("pinSelected"));
+  pinSelected_->setToolTip(tr("Pin the selected sets to the comparison table"));
+  connect(applyBest_, &QPushButton::clicked, this, [this] { applyBest(); });
+  connect(pinBest_, &QPushButton::clicked, this, [this] { pinBest(); });
+  connect(applySelected_, &QPushButton::clicked, this, [this] {
+    const QModelIndexList rows = table_->selectionModel()->selectedRows();
+    if (!rows.isEmpty()) applyRow(static_cast<std::size_t>(rows.front().row()));
+  });
+  connect(pinSelected_, &QPushButton::clicked, this, [this] {
+    QModelIndexList rows = table_->selectionModel()->selectedRows();
+    std::sort(rows.begin(), rows.end());
+    for (const QModelIndex& r : rows) pinRow(static_cast<std::size_t>(r.row()));
+  });
+  connect(table_->selectionModel(), &QItemSelectionModel::selectionChanged, this,
+          &SweepView::updateButtons);
+
+  auto* bestBox = new QWidget(this);
+  auto* bestLayout = new QVBoxLayout(bestBox);
+  bestLayout->setContentsMargins(0, 0, 0, 0);
+  auto* chooseRow = new QHBoxLayout;
+  auto* plotLabel = new QLabel(tr("&Metric:"), bestBox);
+  plotLabel->setBuddy(plotColumn_);
+  auto* ruleLabel = new QLabel(tr("&Best by:"), bestBox);
+  ruleLabel->setBuddy(bestRule_);
+  chooseRow->addWidget(plotLabel);
+  chooseRow->addWidget(plotColumn_);
+  chooseRow->addWidget(ruleLabel);
+  chooseRow->addWidget(bestRule_, 1);
+  bestLayout->addLayout(chooseRow);
+  bestLayout->addWidget(bestLabel_);
+  auto* buttonRow = new QHBoxLayout;
+  buttonRow->addWidget(applyBest_);
+  buttonRow->addWidget(pinBest_);
+  buttonRow->addStretch(1);
+  buttonRow->addWidget(applySelected_);
+  buttonRow->addWidget(pinSelected_);
+  bestLayout->addLayout(buttonRow);
+
+  charts_ = new SweepCharts(this);
+  charts_->setObjectName(QStringLiteral("sweepCharts"));
+
+  auto* resultsHost = new QWidget(this);
+  auto* resultsLayout = new QVBoxLayout(resultsHost);
+  resultsLayout->setContentsMargins(0, 0, 0, 0);
+  resultsLayout->addWidget(table_, 1);
+  resultsLayout->addWidget(bestBox);
+
+  auto* right = new QSplitter(Qt::Vertical, this);
+  right->addWidget(resultsHost);
+  right->addWidget(charts_);
+  right->setStretchFactor(0, 2);
+  right->setStretchFactor(1, 3);
+  auto* split = new QSplitter(Qt::Horizontal, this);
+  split->addWidget(form);
+  split->addWidget(right);
+  split->setStretchFactor(0, 2);
+  split->setStretchFactor(1, 3);
+  auto* layout = new QVBoxLayout(this);
+  layout->addWidget(split);
+  updateButtons();
+}
+
+void SweepView::setInputs(SweepInputs inputs) {
+  const bool specsChanged = inputs.settings.model != inputs_.settings.model ||
+                            inputs.settings.rule != inputs_.settings.rule ||
+                            parameters_->rowCount() == 0;
+  inputs_ = std::move(inputs);
+  header_->setText(
+      tr("<b>%1 × %2</b>, pose %3, cell %4 m, log %5; %6 threads")
+          .arg(qs(inputs_.settings.model), qs(inputs_.settings.rule),
+               inputs_.settings.pose == PoseSource::Truth ? tr("truth") : tr("odometry"),
+               QString::number(inputs_.cellSize),
+               inputs_.logName.isEmpty() ? tr("(none)") : inputs_.logName.toHtmlEscaped())
+          .arg(threadCount()));
+  if (specsChanged) {
+    rebuildParameterRows();
+  } else {
+    // The base values shown follow the document's.
+    const QSignalBlocker block(parameters_);
+    for (int r = 0; r < parameters_->rowCount(); ++r) {
+      const std::string name =
+          parameters_->item(r, kSweepColumn)->data(Qt::UserRole).toString().toStdString();
+      if (inputs_.settings.parameters.has(name))
+        parameters_->item(r, kBaseColumn)
+            ->setText(qs(shortestText(inputs_.settings.parameters.get(name))));
+    }
+  }
+  // Metrics that need what the document lacks are shown but cannot be chosen.
+  const QSignalBlocker block(metrics_);
+  for (int i = 0; i < metrics_->count(); ++i) {
+    QListWidgetItem* item = metrics_->item(i);
+    const std::string m = item->data(Qt::UserRole).toString().toStdString();
+    QString why;
+    if (isReferenceMetric(m) && !inputs_.reference) why = tr("needs a reference map");
+    if (m == "two-run" && !inputs_.secondRun) why = tr("needs a second log of the same route");
+    item->setFlags(why.isEmpty() ? (Qt::ItemIsUserCheckable | Qt::ItemIsEnabled)
+                                 : Qt::ItemIsUserCheckable);
+    item->setToolTip(why);
+  }
+  updateSetCount();
+  updateButtons();
+}
+
+void SweepView::rebuildParameterRows() {
+  updating_ = true;
+  const QSignalBlocker block(parameters_);
+  parameters_->setRowCount(0);
+  for (const ParameterSpec& spec : inputs_.settings.parameters.specs()) {
+    const int r = parameters_->rowCount();
+    parameters_->insertRow(r);
+    const QString label = spec.symbol.empty() || spec.symbol == spec.name
+                              ? qs(spec.name)
+                              : QStringLiteral("%1 (%2)").arg(qs(spec.symbol), qs(spec.name));
+    auto* check = new QTableWidgetItem(label);
+    check->setFlags(Qt::ItemIsUserCheckable | Qt::ItemIsEnabled);
+    check->setCheckState(Qt::Unchecked);
+    check->setData(Qt::UserRole, qs(spec.name));
+    check->setToolTip(qs(spec.description + (spec.source.empty() ? "" : " (" + spec.source + ")")));
+    auto fixed = [](const QString& text) {
+      auto* item = new QTableWidgetItem(text);
+      item->setFlags(Qt::ItemIsEnabled);
+      return item;
+    };
+    parameters_->setItem(r, kSweepColumn, check);
+    parameters_->setItem(r, kUnitColumn, fixed(qs(spec.unit)));
+    parameters_->setItem(r, kRangeColumn,
+                         fixed(QStringLiteral("%1 … %2").arg(qs(shortestText(spec.min)),
+                                                             qs(shortestText(spec.max)))));
+    parameters_->setItem(r, kBaseColumn,
+                         fixed(qs(shortestText(inputs_.settings.parameters.get(spec.name)))));
+    auto* values = new QTableWidgetItem(qs(suggestedValues(spec)));
+    values->setFlags(Qt::ItemIsEnabled | Qt::ItemIsEditable);
+    parameters_->setItem(r, kValuesColumn, values);
+  }
+  parameters_->resizeColumnsToContents();
+  updating_ = false;
+  showChoice();
+}
+
+void SweepView::setChoice(const SweepChoice& choice) {
+  if (choice == choice_) return;
+  choice_ = choice;
+  showChoice();
+}
+
+void SweepView::showChoice() {
+  updating_ = true;
+  {
+    const QSignalBlocker block(parameters_);
+    for (int r = 0; r < parameters_->rowCount(); ++r) {
+      const std::string name =
+          parameters_->item(r, kSweepColumn)->data(Qt::UserRole).toString().toStdString();
+      bool swept = false;
+      for (const std::string& axis : choice_.axes) {
+        const auto [p, values] = splitAxis(axis);
+        if (p != name) continue;
+        swept = true;
+        parameters_->item(r, kValuesColumn)->setText(qs(values));
+      }
+      parameters_->item(r, kSweepColumn)->setCheckState(swept ? Qt::Checked : Qt::Unchecked);
+    }
+  }
+  QStringList ties;
+  for (const std::string& t : choice_.ties) ties << qs(t);
+  ties_->setText(ties.join(QStringLiteral("; ")));
+  {
+    const QSignalBlocker block(metrics_);
+    for (int i = 0; i < metrics_->count(); ++i) {
+      QListWidgetItem* item = metrics_->item(i);
+      const std::string m = item->data(Qt::UserRole).toString().toStdString();
+      const bool on =
+          std::find(choice_.metrics.begin(), choice_.metrics.end(), m) != choice_.metrics.end();
+      item->setCheckState(on ? Qt::Checked : Qt::Unchecked);
+    }
+  }
+  updating_ = false;
+  updateSetCount();
+}
+
+void SweepView::readForm() {
+  SweepChoice c;
+  std::set<std::string> here;
+  for (int r = 0; r < parameters_->rowCount(); ++r) {
+    const std::string name =
+        parameters_->item(r, kSweepColumn)->data(Qt::UserRole).toString().toStdString();
+    here.insert(name);
+    if (parameters_->item(r, kSweepColumn)->checkState() == Qt::Checked)
+      c.axes.push_back(name + "=" +
+                       parameters_->item(r, kValuesColumn)->text().trimmed().toStdString());
+  }
+  // Axes of parameters another model declares stay in the choice (for when it comes back).
+  for (const std::string& axis : choice_.axes)
+    if (!here.count(splitAxis(axis).first)) c.axes.push_back(axis);
+  c.ties = splitTies(ties_->text());
+  for (int i = 0; i < metrics_->count(); ++i)
+    if (metrics_->item(i)->checkState() == Qt::Checked)
+      c.metrics.push_back(metrics_->item(i)->data(Qt::UserRole).toString().toStdString());
+  updateSetCount();
+  if (c == choice_) return;
+  choice_ = std::move(c);
+  updateSetCount();
+  emit choiceEdited(choice_);
+}
+
+void SweepView::updateSetCount() {
+  const ParameterSet& base = inputs_.settings.parameters;
+  try {
+    std::size_t n = 1;
+    for (const std::string& axis : choice_.axes) {
+      if (!base.has(splitAxis(axis).first)) continue;
+      n *= parseSweepAxis(axis, base).values.size();
+      if (n > kMaxViewSets) break;
+    }
+    for (const std::string& t : choice_.ties) parseSweepTie(t, base);
+    setCount_->setText(n > kMaxViewSets ? tr("more than %1 sets").arg(kMaxViewSets) : setsText(n));
+    setCount_->setStyleSheet(n > kMaxViewSets ? QStringLiteral("color: #b00020") : QString());
+    setCount_->setToolTip({});
+  } catch (const std::exception& e) {
+    setCount_->setText(tr("cannot sweep"));
+    setCount_->setStyleSheet(QStringLiteral("color: #b00020"));
+    setCount_->setToolTip(QString::fromUtf8(e.what()));
+  }
+}
+
+std::shared_ptr<SweepJob> SweepView::makeJob() const {
+  if (!inputs_.run) throw std::invalid_argument(tr("Open a log first.").toStdString());
+  const ParameterSet& base = inputs_.settings.parameters;
+  auto job = std::make_shared<SweepJob>();
+  job->run = inputs_.run;
+  job->metrics = parseSweepMetrics(choice_.metrics);
+  if (job->metrics.empty())
+    throw std::invalid_argument(tr("Choose at least one metric.").toStdString());
+  const SetMeasures measures = measuresOf(job->metrics);
+  if (!measures.reference.empty()) {
+    if (!inputs_.reference)
+      throw std::invalid_argument(tr("The reference metrics need a reference map.").toStdString());
+    job->reference = inputs_.reference;
+  }
+  std::vector<SweepAxis> axes;
+  for (const std::string& axis : choice_.axes)
+    if (base.has(splitAxis(axis).first)) axes.push_back(parseSweepAxis(axis, base));
+  if (axes.empty()) throw std::invalid_argument(tr("Tick a parameter to sweep.").toStdString());
+  std::vector<SweepTie> ties;
+  for (const std::string& t : choice_.ties) ties.push_back(parseSweepTie(t, base));
+  std::size_t n = 1;
+  for (const SweepAxis& a : axes) {
+    n *= a.values.size();
+    if (n > kMaxViewSets)
+      throw std::invalid_argument(tr("More than %1 sets: sweep them with sonargrid-cli sweep "
+                                     "--shard (docs/sweeps.md).")
+                                      .arg(kMaxViewSets)
+                                      .toStdString());
+  }
+  job->sets = sweepSets(base, axes, ties);
+  job->settings.model = inputs_.settings.model;
+  job->settings.rule = inputs_.settings.rule;
+  job->settings.pose = inputs_.settings.pose;
+  job->settings.grid = inputs_.run->fittingGrid(inputs_.settings.pose, inputs_.cellSize);
+  if (measures.twoRun) {
+    if (!inputs_.secondRun)
+      throw std::invalid_argument(
+          tr("two-run needs a second log of the same route.").toStdString());
+    job->secondRun = inputs_.secondRun;
+    // One grid over both runs, as `sonargrid-cli sweep --second-log` makes it: both fitting
+    // grids are snapped to multiples of the cell size, so the union is too.
+    const GridSpec a = job->settings.grid;
+    const GridSpec b = inputs_.secondRun->fittingGrid(inputs_.settings.pose, inputs_.cellSize);
+    const Position lo = a.origin.cwiseMin(b.origin);
+    const Position hi = (a.origin + Position(a.widthMetres(), a.heightMetres()))
+                            .cwiseMax(b.origin + Position(b.widthMetres(), b.heightMetres()));
+    job->settings.grid = GridSpec::covering(lo, hi, a.cellSize, 0.0);
+  }
+  return job;
+}
+
+bool SweepView::run() {
+  if (isRunning()) return false;
+  std::shared_ptr<SweepJob> job;
+  try {
+    job = makeJob();
+  } catch (const std::exception& e) {
+    setStatus(QString::fromUtf8(e.what()), true);
+    return false;
+  }
+  job_ = job;
+  sweptParameters_.clear();
+  shownParameters_.clear();
+  for (const std::string& axis : choice_.axes) {
+    const std::string p = splitAxis(axis).first;
+    if (inputs_.settings.parameters.has(p)) sweptParameters_.push_back(p);
+  }
+  shownParameters_ = sweptParameters_;
+  for (const std::string& t : choice_.ties)
+    shownParameters_.push_back(parseSweepTie(t, inputs_.settings.parameters).parameter);
+  model_->reset(job->sets, shownParameters_, metricColumns(job->metrics));
+  {
+    updating_ = true;
+    const QString previous = plotColumn_->currentText();
+    plotColumn_->clear();
+    for (const std::string& c : model_->columns()) plotColumn_->addItem(qs(c));
+    const int keep = plotColumn_->findText(previous);
+    plotColumn_->setCurrentIndex(keep >= 0 ? keep : 0);
+    updating_ = false;
+  }
+  refillBestRules();
+  charts_->clear();
+  bestLabel_->clear();
+  progress_->setRange(0, static_cast<int>(job->sets.size()));
+  progress_->setValue(0);
+  running_ = runner_->start(job);
+  setStatus(tr("Sweeping %1 on %2 threads…").arg(setsText(job->sets.size())).arg(threadCount()));
+  updateButtons();
+  return running_;
+}
+
+void SweepView::cancel() {
+  if (!isRunning()) return;
+  runner_->cancel();
+  setStatus(tr("Cancelling…"));
+}
+
+bool SweepView::isRunning() const {
+  return running_;
+}
+
+bool SweepView::waitForSweep(int timeoutMs) {
+  QElapsedTimer t;
+  t.start();
+  while (running_) {
+    if (t.elapsed() > timeoutMs) return false;
+    QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
+  }
+  return true;
+}
+
+QString SweepView::statusText() const {
+  return status_->text();
+}
+
+void SweepView::setStatus(const QString& text, bool error) {
+  status_->setText(text);
+  status_->setStyleSheet(error ? QStringLiteral("color: #b00020") : QString());
+}
+
+void SweepView::onSetFinished(std::size_t index, const std::vector<std::optional<double>>& values) {
+  model_->setResult(index, values);
+  progress_->setValue(static_cast<int>(model_->finishedCount()));
+  if (!plotTimer_->isActive()) plotTimer_->start();
+}
+
+void SweepView::onFinished(bool completed, const QString& error) {
+  running_ = false;
+  plotTimer_->stop();
+  const auto done = static_cast<int>(model_->finishedCount());
+  const auto total = static_cast<int>(model_->sets().size());
+  if (!error.isEmpty())
+    setStatus(tr("The sweep stopped after %1 of %2 sets: %3").arg(done).arg(total).arg(error),
+              true);
+  else if (completed)
+    setStatus(tr("Swept %1.").arg(setsText(static_cast<std::size_t>(total))));
+  else
+    setStatus(tr("Cancelled after %1 of %2 sets; the table holds the finished ones.")
+                  .arg(done)
+                  .arg(total));
+  refreshPlots();
+  refreshBest();
+  updateButtons();
+  emit sweepFinished(completed);
+}
+
+void SweepView::closeEvent(QCloseEvent* event) {
+  // A sweep nobody watches is stopped; its finished sets stay in the table.
+  cancel();
+  QWidget::closeEvent(event);
+}
+
+int SweepView::plotColumn() const {
+  const int i = plotColumn_->currentIndex();
+  return i >= 0 && static_cast<std::size_t>(i) < model_->columns().size() ? i : -1;
+}
+
+bool SweepView::setPlotColumn(const QString& column) {
+  const int i = plotColumn_->findText(column);
+  if (i < 0) return false;
+  plotColumn_->setCurrentIndex(i);
+  return true;
+}
+
+bool SweepView::setBestRule(BestRule rule) {
+  const int i = bestRule_->findData(static_cast<int>(rule));
+  if (i < 0) return false;
+  bestRule_->setCurrentIndex(i);
+  return true;
+}
+
+void SweepView::refillBestRules() {
+  updating_ = true;
+  const QVariant previous = bestRule_->currentData();
+  bestRule_->clear();
+  const int c = plotColumn();
+  if (c >= 0 && model_->columns()[static_cast<std::size_t>(c)] == "vsdns") {
+    bestRule_->addItem(tr("lowest histogram bin, averaged (paper 002)"),
+                       static_cast<int>(BestRule::LowestBin));
+    bestRule_->addItem(tr("minimum VSDNS (paper 002)"), static_cast<int>(BestRule::Minimum));
+    bestRule_->addItem(tr("nearest the mean VSDNS (paper 002)"),
+                       static_cast<int>(BestRule::NearestMean));
+  } else if (c >= 0) {
+    const bool higher = betterDirection(model_->columns()[static_cast<std::size_t>(c)]) > 0;
+    bestRule_->addItem(higher ? tr("largest value") : tr("smallest value"),
+                       static_cast<int>(BestRule::BestValue));
+  }
+  const int keep = bestRule_->findData(previous);
+  bestRule_->setCurrentIndex(keep >= 0 ? keep : 0);
+  updating_ = false;
+}
+
+std::optional<OptimalSet> SweepView::best() const {
+  const int c = plotColumn();
+  if (c < 0 || !job_) return std::nullopt;
+  const std::vector<std::optional<double>> values =
+      model_->columnValues(static_cast<std::size_t>(c));
+  if (std::none_of(values.begin(), values.end(), [](const auto& v) { return v.has_value(); }))
+    return std::nullopt;
+  const auto rule = static_cast<BestRule>(bestRule_->currentData().toInt());
+  switch (rule) {
+    case BestRule::LowestBin:
+      return lowestBinAverage(values, job_->sets);
+    case BestRule::Minimum:
+      return minimumVsdns(values, job_->sets);
+    case BestRule::NearestMean:
+      return nearestMeanVsdns(values, job_->sets);
+    case BestRule::BestValue:
+      break;
+  }
+  const int direction = betterDirection(model_->columns()[static_cast<std::size_t>(c)]);
+  std::optional<std::size_t> at;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!values[i]) continue;
+    // Ties go to the earliest set (as optimal_sets.h).
+    if (!at || direction * (*values[i] - *values[*at]) > 0) at = i;
+  }
+  OptimalSet o;
+  o.parameters = job_->sets[*at];
+  o.members = {*at};
+  o.criterion = *values[*at];
+  return o;
+}
+
+QString SweepView::describe(const ParameterSet& set) const {
+  QStringList parts;
+  for (const std::string& p : shownParameters_)
+    parts << QStringLiteral("%1=%2").arg(qs(p), qs(shortestText(set.get(p))));
+  return parts.join(QStringLiteral(", "));
+}
+
+MapperSettings SweepView::settingsOf(const ParameterSet& set) const {
+  MapperSettings s;
+  s.model = job_->settings.model;
+  s.rule = job_->settings.rule;
+  s.pose = job_->settings.pose;
+  s.parameters = set;
+  return s;
+}
+
+void SweepView::refreshBest() {
+  const std::optional<OptimalSet> b = best();
+  if (!b) {
+    bestLabel_->setText(job_ ? tr("No set has a value of this metric yet.") : QString());
+  } else {
+    const QString members =
+        b->members.size() == 1
+            ? tr("set %1").arg(b->members.front())
+            : tr("average of the %1 of the lowest bin").arg(setsText(b->members.size()));
+    bestLabel_->setText(tr("Best: %1 (%2; %3 = %4)")
+                            .arg(describe(b->parameters), members, plotColumn_->currentText())
+                            .arg(b->criterion, 0, 'g', 6));
+  }
+  updateButtons();
+}
+
+void SweepView::refreshPlots() {
+  const int c = plotColumn();
+  if (c < 0 || !job_) {
+    charts_->clear();
+    return;
+  }
+  charts_->plot(job_->sets, sweptParameters_, plotColumn_->currentText(),
+                model_->columnValues(static_cast<std::size_t>(c)), kPaper002HistogramBins);
+}
+
+bool SweepView::applyBest() {
+  const std::optional<OptimalSet> b = best();
+  if (!b) return false;
+  emit applyRequested(
+      settingsOf(b->parameters),
+      tr("Sweep best (%1): %2").arg(bestRule_->currentText(), describe(b->parameters)));
+  return true;
+}
+
+bool SweepView::pinBest() {
+  const std::optional<OptimalSet> b = best();
+  if (!b) return false;
+  emit pinRequested(settingsOf(b->parameters), tr("sweep best: %1").arg(describe(b->parameters)));
+  return true;
+}
+
+bool SweepView::applyRow(std::size_t index) {
+  if (!job_ || index >= job_->sets.size()) return false;
+  emit applyRequested(settingsOf(job_->sets[index]),
+                      tr("Sweep set %1: %2").arg(index).arg(describe(job_->sets[index])));
+  return true;
+}
+
+bool SweepView::pinRow(std::size_t index) {
+  if (!job_ || index >= job_->sets.size()) return false;
+  emit pinRequested(settingsOf(job_->sets[index]),
+                    tr("sweep set %1: %2").arg(index).arg(describe(job_->sets[index])));
+  return true;
+}
+
+void SweepView::updateButtons() {
+  const bool running = isRunning();
+  runButton_->setEnabled(!running && inputs_.run != nullptr);
+  cancelButton_->setEnabled(running);
+  const bool hasBest = !bestLabel_->text().isEmpty() && best().has_value();
+  applyBest_->setEnabled(hasBest);
+  pinBest_->setEnabled(hasBest);
+  const bool selected = job_ && table_->selectionModel()->hasSelection();
+  applySelected_->setEnabled(selected);
+  pinSelected_->setEnabled(selected);
+}
+
+}  // namespace sg::ui
