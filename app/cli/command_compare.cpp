@@ -81,8 +81,11 @@ Config parseConfig(const std::string& text, PoseSource pose) {
   return c;
 }
 
+}  // namespace
+
 // One grid holding every map's grid (the mapper grows a grid when a model reaches past it); grids
-// of one cell size are snapped to its multiples, so the union lines up with each of them.
+// of one cell size are snapped to its multiples, so the union lines up with each of them. Also
+// used by `reproduce osullivan` (reproduce.h).
 GridSpec unionOf(const std::vector<OccupancyMap>& maps) {
   Position lo = maps.front().spec.origin, hi = lo;
   for (const OccupancyMap& m : maps) {
@@ -95,6 +98,8 @@ GridSpec unionOf(const std::vector<OccupancyMap>& maps) {
   const Position half(cell / 2, cell / 2);
   return GridSpec::covering(lo + half, hi - half, cell, 0.0);
 }
+
+namespace {
 
 // Runs job(0) ... job(count − 1) on the thread policy's threads; each job writes only its own
 // slot, so results do not depend on the number of threads.

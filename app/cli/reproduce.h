@@ -16,6 +16,12 @@
 #include "sonargrid/occupancy_map.h"
 #include "sonargrid/reference/reference_map.h"
 
+namespace sg::cli {
+// The grid holding every one of `maps`' grids (all of one cell size), as `compare` maps its
+// configurations on when the mapper grew their grids differently (command_compare.cpp).
+GridSpec unionOf(const std::vector<OccupancyMap>& maps);
+}  // namespace sg::cli
+
 namespace sg::cli::reproduce {
 
 namespace fs = std::filesystem;

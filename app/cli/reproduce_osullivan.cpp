@@ -4,6 +4,7 @@
 // and log updates, all with the multiple-target model), each scored by the paper's four benchmarks
 // against the reference map. Which dataset and why: docs/reproduction.md.
 
+#include <algorithm>
 #include <map>
 #include <span>
 
@@ -65,28 +66,57 @@ Json runOSullivan(const Context& ctx) {
 
   Table perRun{{"table", "variant", "model", "rule", "run"}, {}};
   for (const Benchmark& b : kBenchmarks) perRun.header.push_back(b.key);
-  // One map per (model, rule, run): the log row of the rules table is the mtm row of the models
-  // table, mapped once.
-  std::map<std::string, std::vector<std::optional<double>>> cache;
-  auto scores = [&](const Variant& v) -> const std::vector<std::optional<double>>& {
-    const std::string id = std::string(v.model) + "/" + v.rule;
-    auto found = cache.find(id);
-    if (found != cache.end()) return found->second;
-    // Per benchmark, the mean over the runs; per-run rows go to the CSV.
-    std::vector<std::vector<std::optional<double>>> perBenchmark(std::size(kBenchmarks));
-    for (std::size_t r = 0; r < logs.size(); ++r) {
+
+  // The four configurations of the two tables (the log row of the rules table is the mtm row of
+  // the models table, mapped once), compared as `sonargrid-cli compare` compares them: on each
+  // run, every configuration on one grid (compare's unionOf when the mapper grew their grids
+  // differently) and scored on the cells all four observed (commonObservedCells, compare's
+  // default `--cells common`; paper 001 does not say which cells its benchmarks count).
+  std::vector<const Variant*> configs;
+  for (std::span<const Variant> list :
+       {std::span<const Variant>(kModels), std::span<const Variant>(kRules)}) {
+    for (const Variant& v : list) {
+      const bool seen = std::any_of(configs.begin(), configs.end(), [&](const Variant* c) {
+        return std::string(c->model) == v.model && std::string(c->rule) == v.rule;
+      });
+      if (!seen) configs.push_back(&v);
+    }
+  }
+  auto idOf = [](const Variant& v) { return std::string(v.model) + "/" + v.rule; };
+  // Per configuration, per benchmark, the value of each run.
+  std::map<std::string, std::vector<std::vector<std::optional<double>>>> values;
+  for (std::size_t r = 0; r < logs.size(); ++r) {
+    std::vector<OccupancyMap> maps(configs.size());
+    auto mapConfig = [&](std::size_t c, const GridSpec& on) {
       std::vector<std::pair<std::string, double>> overrides;
       // Paper 001 §3.1 combines Occ and Emp as Occ, or 1 − Emp (combine = 1), after normalising
       // each reading's occupied arc (normalise = 1, the default).
-      if (std::string(v.rule) == "addition") overrides.push_back({"combine", 1.0});
-      const MapperSettings settings = settingsFor(v.model, v.rule, logs[r].ring, overrides);
-      const OccupancyMap map = mapLog(logs[r], folder / kRuns[r], grid, settings);
+      if (std::string(configs[c]->rule) == "addition") overrides.push_back({"combine", 1.0});
+      const MapperSettings settings =
+          settingsFor(configs[c]->model, configs[c]->rule, logs[r].ring, overrides);
+      maps[c] = mapLog(logs[r], folder / kRuns[r], on, settings);
+    };
+    for (std::size_t c = 0; c < configs.size(); ++c) mapConfig(c, grid);
+    if (std::any_of(maps.begin(), maps.end(),
+                    [&](const OccupancyMap& m) { return !(m.spec == maps.front().spec); })) {
+      const GridSpec all = unionOf(maps);
+      for (std::size_t c = 0; c < configs.size(); ++c)
+        if (!(maps[c].spec == all)) mapConfig(c, all);
+    }
+    ScoreOptions common = options;
+    std::vector<const OccupancyMap*> pointers;
+    for (const OccupancyMap& m : maps) pointers.push_back(&m);
+    common.cellMask = commonObservedCells(pointers);
+    for (std::size_t c = 0; c < configs.size(); ++c) {
+      const Variant& v = *configs[c];
       ReferenceScore score;
       try {
-        score = scoreAgainstReference(map, reference, options);
+        score = scoreAgainstReference(maps[c], reference, common);
       } catch (const MetricsError& e) {
         throw InputError((folder / "world.json").string() + ": " + e.what());
       }
+      auto& perBenchmark = values[idOf(v)];
+      perBenchmark.resize(std::size(kBenchmarks));
       std::vector<std::string> row{"", "", v.model, v.rule, std::to_string(r + 1)};
       for (std::size_t k = 0; k < std::size(kBenchmarks); ++k) {
         perBenchmark[k].push_back(score.value(kBenchmarks[k].metric));
@@ -94,13 +124,17 @@ Json runOSullivan(const Context& ctx) {
       }
       perRun.rows.push_back(row);
       if (r == 0) {
-        writeMapWithReference(map, reference, dir / (std::string(v.model) + "-" + v.rule + ".png"));
+        writeMapWithReference(maps[c], reference,
+                              dir / (std::string(v.model) + "-" + v.rule + ".png"));
       }
     }
+    reportProgress(ctx, "osullivan runs", r + 1, logs.size());
+  }
+  // Per benchmark, the mean over the runs; per-run rows go to the CSV.
+  auto scores = [&](const Variant& v) {
     std::vector<std::optional<double>> means;
-    for (const auto& values : perBenchmark) means.push_back(meanSd(values).mean);
-    reportProgress(ctx, "osullivan maps", cache.size() + 1, 4);
-    return cache.emplace(id, means).first->second;
+    for (const auto& perRunValues : values.at(idOf(v))) means.push_back(meanSd(perRunValues).mean);
+    return means;
   };
 
   Json summary = Json::object();
@@ -112,7 +146,7 @@ Json runOSullivan(const Context& ctx) {
     for (const Benchmark& b : kBenchmarks) t.header.push_back(std::string("paper: ") + b.title);
     Json part = Json::object();
     for (const Variant& v : variants) {
-      const std::vector<std::optional<double>>& s = scores(v);
+      const std::vector<std::optional<double>> s = scores(v);
       std::vector<std::string> row{v.title};
       Json entry = Json::object();
       for (std::size_t k = 0; k < std::size(kBenchmarks); ++k) {
@@ -150,7 +184,8 @@ Json runOSullivan(const Context& ctx) {
 
   const std::string intro =
       "Benchmarks against `arafat-room/world.json`, each the mean over `run-1` and `run-2` "
-      "(per run: `runs.csv`), on 5 cm cells. Correlation: higher is better; the other three: "
+      "(per run: `runs.csv`), on 5 cm cells, on the cells that all four configurations observed "
+      "(as `sonargrid-cli compare`). Correlation: higher is better; the other three: "
       "lower is better. The paper's values are repeated on the right.\n\n";
   writeText(dir / "models.md", "# Paper 001 (O'Sullivan et al.), sonar models (§5.1) rerun\n\n" +
                                    intro + models.markdown());
