@@ -132,6 +132,15 @@ const std::vector<MetricInfo>& goodnessMetricInfo() {
        source("D_map divided by the number of cells scored (the paper's normalisation for maps "
               "of different sizes). Lower is better.",
               kPaper002, "§5, second approach")},
+      {"entropy_bits", tr("Map entropy"), tr("bits"), 1,
+       source("Σ H(p) = −p log2 p − (1 − p) log2 (1 − p) over the observed cells (Martin & "
+              "Moravec 1996, named in paper 002). Lower is a more decided map, not a truer one.",
+              kPaper002, "§5")},
+      {"entropy_bits_mean", tr("Map entropy, mean"), tr("bits/cell"), 4,
+       source("Map entropy divided by the number of observed cells.", kPaper002, "§5")},
+      {"entropy_bits_grid", tr("Map entropy, grid"), tr("bits"), 1,
+       source("Σ H(p) over every cell of the grid; a never-observed cell counts 1 bit.",
+              kPaper002, "§5")},
       {"two_run_positive", tr("Two runs: agree"), tr("cells"), 0,
        source("Cells observed in both runs that are equal once both maps are thresholded at "
               "p > 0.5 (after Moravec & Elfes). Higher is better.",
@@ -159,6 +168,11 @@ std::vector<MetricsResult::Value> MetricsResult::values() const {
     if (g.derivative) {
       out.push_back({"derivative_noise", g.derivative->sum, false});
       out.push_back({"derivative_noise_mean", g.derivative->mean, false});
+    }
+    if (g.entropy) {
+      out.push_back({"entropy_bits", g.entropy->observedBits, false});
+      out.push_back({"entropy_bits_mean", g.entropy->meanBits, false});
+      out.push_back({"entropy_bits_grid", g.entropy->totalBits, false});
     }
     if (g.vsdns || g.derivative || g.twoRun) {
       std::optional<double> positive, negative;
@@ -223,6 +237,7 @@ std::optional<MetricsResult> computeMetrics(const MetricsInput& in,
       e.settings.grid = goodnessGrid(*in.run, in.secondRun.get(), in.settings.pose, in.cellSize);
       e.measures.vsdns = in.goodness;
       e.measures.derivative = in.goodness;
+      e.measures.entropy = in.goodness;
       e.measures.twoRun = twoRuns;
       out.goodness = evaluateSet(e, in.settings.parameters, cancel);
       if (!out.goodness) return std::nullopt;  // cancelled
