@@ -139,8 +139,8 @@ const std::vector<MetricInfo>& goodnessMetricInfo() {
       {"entropy_bits_mean", tr("Map entropy, mean"), tr("bits/cell"), 4,
        source("Map entropy divided by the number of observed cells.", kPaper002, "§5")},
       {"entropy_bits_grid", tr("Map entropy, grid"), tr("bits"), 1,
-       source("Σ H(p) over every cell of the grid; a never-observed cell counts 1 bit.",
-              kPaper002, "§5")},
+       source("Σ H(p) over every cell of the grid; a never-observed cell counts 1 bit.", kPaper002,
+              "§5")},
       {"two_run_positive", tr("Two runs: agree"), tr("cells"), 0,
        source("Cells observed in both runs that are equal once both maps are thresholded at "
               "p > 0.5 (after Moravec & Elfes). Higher is better.",
