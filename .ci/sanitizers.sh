@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Builds the core, the CLI and their tests with AddressSanitizer + UndefinedBehaviorSanitizer into
-# build-asan/ and runs the core, CLI and live-robot test suites under them. Any report fails the job.
+# build-asan/ and runs the core, CLI and live-robot test suites under them (see below for the two
+# long CLI suites). Any report fails the job.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
@@ -11,4 +12,11 @@ cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSONARGRID_
 cmake --build build-asan -j "$(nproc)"
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-ctest --test-dir build-asan -L "core|cli|live" --output-on-failure -j "$(nproc)"
+# tst_cli_threads (about 100 CLI runs) and tst_cli_bench (timings) take many minutes under ASan
+# and cover no code the other suites do not: tst_cli_threads runs here with the same subset as in
+# .ci/tsan.sh, tst_cli_bench only in the uninstrumented build (.ci/test.sh).
+ctest --test-dir build-asan -L "core|cli|live" -E '^(tst_cli_threads|tst_cli_bench)$' \
+  --output-on-failure -j "$(nproc)"
+build-asan/tests/cli/tst_cli_threads "sameMapAnyThreadCount:hpf × bayes" \
+  "sameMapAnyThreadCount:hpf × addition" "sameMapAnyThreadCount:himm × himm" \
+  sameResultsOtherCommands badValues
