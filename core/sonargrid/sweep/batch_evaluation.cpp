@@ -1,0 +1,521 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Compiled with -ffp-contract=off (core/CMakeLists.txt): the clones for wider vectors must not fuse
+// a multiply and an add that one map (built for baseline x86-64, which has no FMA) does apart.
+#include "sonargrid/sweep/batch_evaluation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <mutex>
+#include <new>
+#include <stdexcept>
+#include <tuple>
+
+#include "sonargrid/concurrency.h"
+#include "sonargrid/mapper.h"
+#include "sonargrid/models/cone_raster.h"
+#include "sonargrid/models/parameterized_shape.h"
+#include "sonargrid/rules/rule_classes.h"
+
+namespace sg {
+// Not in an anonymous namespace: batchRow() is cloned per instruction set, which needs a symbol
+// with external linkage, and so do the types of its argument.
+namespace batch {
+
+constexpr int K = static_cast<int>(kBatchLanes);
+// One value of each set of a batch (the vector extensions of GCC and Clang; 64 bytes).
+using Doubles = double __attribute__((vector_size(8 * K)));
+using Longs = std::int64_t __attribute__((vector_size(8 * K)));
+using FloatsK = float __attribute__((vector_size(4 * K)));
+
+// How often a batch looks at the cancel and stop flags, in readings.
+constexpr std::size_t kCancelStride = 256;
+
+// One set as the model and the rule read it (ParameterizedModel::configure, BayesRule::configure).
+struct Lane {
+  double p1 = 0, p2 = 0, p3 = 0, p4 = 0, p5 = 0;  // p5 in radians
+  bool noEchoFree = false;
+  double prior = 0.5;
+  bool real = false;  // false: a lane that pads the last batch
+};
+
+Lane laneOf(const SweepSettings& settings, const ParameterSet& set) {
+  // The set on the defaults, as the Mapper constructor completes it.
+  ParameterSet p = defaultParameters(settings.model, settings.rule);
+  for (const auto& [name, value] : set.values()) {
+    if (p.has(name)) p.set(name, value);
+  }
+  Lane l;
+  l.p1 = p.get("p1");
+  l.p2 = p.get("p2");
+  l.p3 = p.get("p3");
+  l.p4 = p.get("p4");
+  l.p5 = degToRad(p.get("p5"));
+  l.noEchoFree = p.get("no_echo") != 0.0;
+  l.prior = p.has("prior") ? p.get("prior") : 0.5;
+  l.real = true;
+  return l;
+}
+
+// Every reading of a run placed in the world once (Mapper::beamOf), in mapping order.
+std::vector<Beam> beamsOf(const Dataset& run, PoseSource pose) {
+  std::vector<Beam> beams;
+  beams.reserve(run.readingCount());
+  for (const Scan& scan : run.scans) {
+    const Pose2D& robot = pose == PoseSource::Truth && scan.truth ? *scan.truth : scan.odometry;
+    for (const Reading& r : scan.readings) {
+      if (r.sonar >= run.ring.size()) {
+        throw MapperError("reading names sonar " + std::to_string(r.sonar) + " but the ring has " +
+                          std::to_string(run.ring.size()));
+      }
+      Beam b;
+      b.sensor = robot.compose(run.ring.sonars[r.sonar].pose);
+      b.range = r.range < run.ring.maxRange ? r.range : Reading::kNoEcho;
+      b.maxRange = run.ring.maxRange;
+      beams.push_back(b);
+    }
+  }
+  return beams;
+}
+
+// K doubles per cell, each cell's on a cache line of its own. Read and written through
+// load()/store(): the alignment a vector type has depends on the instruction set a clone is built
+// for, so the storage does not rely on it.
+class LanePlane {
+ public:
+  void assign(std::size_t cells, const double (&value)[K]) {
+    if (cells > capacity_) {
+      data_.reset(
+          static_cast<double*>(::operator new[](cells * sizeof(double) * K, std::align_val_t{64})));
+      capacity_ = cells;
+    }
+    cells_ = cells;
+    for (std::size_t i = 0; i < cells; ++i) std::memcpy(data_.get() + i * K, value, sizeof value);
+  }
+  std::size_t cells() const { return cells_; }
+  double* at(std::size_t cell) { return data_.get() + cell * K; }
+  const double* at(std::size_t cell) const { return data_.get() + cell * K; }
+
+ private:
+  struct Delete {
+    void operator()(double* p) const { ::operator delete[](p, std::align_val_t{64}); }
+  };
+  std::unique_ptr<double[], Delete> data_;
+  std::size_t capacity_ = 0, cells_ = 0;
+};
+
+inline Doubles load(const double* p) {
+  Doubles v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void store(double* p, const Doubles& v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+// A batch's state: per cell, one value of each lane of every quantity ([cell][lane]).
+// A uniform batch (every lane the same cone) keeps one count per cell, the others one per lane.
+struct LaneState {
+  LanePlane count, mean, m2, posterior;
+  std::vector<std::uint32_t> shared;  // a uniform batch's count per cell
+  bool uniform = false;
+  std::vector<float> values;  // one cone row's model values, [cell of the row][lane]
+  void reset(std::size_t cells, bool isUniform, bool vsdns, bool map, const double (&prior)[K]) {
+    static constexpr double kZero[K] = {};
+    uniform = isUniform;
+    count.assign(uniform ? 0 : cells, kZero);
+    shared.assign(uniform ? cells : 0, 0);
+    mean.assign(vsdns ? cells : 0, kZero);
+    m2.assign(vsdns ? cells : 0, kZero);
+    posterior.assign(map ? cells : 0, prior);
+  }
+};
+
+using Shape = ParameterizedShape<float>;
+
+// One cone row of one reading, for every lane of a batch.
+struct RowJob {
+  const ConeRow* row;
+  const ConeBeam<Shape>* cones;  // K, one per lane
+  const float* reachF;           // K: each lane's reach as forEachConeRow compares it
+  double heading;                // the sensor's, wrapped as forEachConeRow wraps it
+  bool vsdns, map;
+  LaneState* state;
+  // A uniform batch's lanes differ only in these of their shapes (the rest is cones[0]'s).
+  FloatsK p1, p4, emptySlope, tentSlope;
+};
+
+// A row of a uniform batch: the row is every lane's own, and each cell's model value for the K
+// sets is one vector of ParameterizedShape::value()'s float operations, in its order.
+[[gnu::always_inline]] inline void uniformRow(const RowJob& job) {
+  const ConeRow& row = *job.row;
+  const BeamTables::Entry* const e = row.entries;
+  LaneState& st = *job.state;
+  const Shape& shape = job.cones[0].shape;
+  const float hHi = static_cast<float>(row.heading);
+  const float hLo = static_cast<float>(row.heading - static_cast<double>(hHi));
+  std::uint32_t* const count = st.shared.data() + row.cell;
+  double* const mean = job.vsdns ? st.mean.at(row.cell) : nullptr;
+  double* const m2 = job.vsdns ? st.m2.at(row.cell) : nullptr;
+  double* const post = job.map ? st.posterior.at(row.cell) : nullptr;
+  for (int j = 0; j < row.count; ++j) {
+    const float r = e[j].distance;
+    const float a = std::abs((e[j].bearing - hHi) - hLo);
+    const FloatsK axis = r < shape.emptyBelow ? job.p1 + job.emptySlope * r
+                                              : job.p4 - job.tentSlope * std::abs(r - shape.s);
+    const float w = (shape.halfAngle - a) * shape.invHalfAngle;
+    const FloatsK pf = w * (axis - 0.5f) + 0.5f;
+    const Doubles p = __builtin_convertvector(pf, Doubles);
+    const std::size_t at = static_cast<std::size_t>(j) * kBatchLanes;
+    const double n = static_cast<double>(++count[j]);
+    if (mean) {  // VsdnsAccumulator::add
+      const Doubles m = load(mean + at);
+      const Doubles delta = p - m;
+      const Doubles mNew = m + delta / n;
+      store(mean + at, mNew);
+      store(m2 + at, load(m2 + at) + delta * (p - mNew));
+    }
+    if (post) {  // BayesRule::apply, likelihood input
+      const Doubles m = load(post + at);
+      const Doubles num = p * m;
+      const Doubles den = num + (1.0 - p) * (1.0 - m);
+      const Doubles q = num / den;
+      store(post + at, den > 0.0 ? q : m);
+    }
+  }
+}
+
+// In each row, each lane's own cells (the row trimmed by its own cone's test, which is what that
+// lane's map would trim the same row of cell centres to), its model values in the float lanes of
+// coneRow(), then per cell the Welford and Bayes steps of VsdnsAccumulator::add() and
+// BayesRule::apply() across the lanes. Cloned for wider vectors (chosen when the program starts);
+// every clone does the same operations per lane.
+__attribute__((target_clones("default", "avx2", "avx512f"))) void batchRow(const RowJob& job) {
+  if (job.state->uniform) {
+    uniformRow(job);
+    return;
+  }
+  const ConeRow& row = *job.row;
+  const int n = row.count;
+  const BeamTables::Entry* const e = row.entries;
+  LaneState& st = *job.state;
+  const std::size_t need = static_cast<std::size_t>(n + lanes::kWidth) * kBatchLanes;
+  if (st.values.size() < need) st.values.resize(need);
+  float* const values = st.values.data();
+  const double h = job.heading;
+  Longs lo, hi;
+  int first = n, last = -1;
+  for (int k = 0; k < K; ++k) {
+    lo[k] = n;
+    hi[k] = -1;
+    const ConeBeam<Shape>& cone = job.cones[k];
+    if (!cone.active) continue;
+    const double half = cone.halfAngle;
+    const float rf = job.reachF[k];
+    auto accepts = [&](const BeamTables::Entry& x) {
+      return x.distance <= rf && std::abs(detail::offAxis(x.bearing, h)) <= half;
+    };
+    int a = 0, b = n - 1;
+    while (a <= b && !accepts(e[a])) ++a;
+    while (b > a && !accepts(e[b])) --b;
+    if (a > b) continue;
+    lo[k] = a;
+    hi[k] = b;
+    first = std::min(first, a);
+    last = std::max(last, b);
+    // The lane's own row heading, as forEachConeRow gives it to coneRow().
+    const double rowHeading = h - detail::turn(static_cast<double>(e[a].bearing) - h);
+    const float hHi = static_cast<float>(rowHeading);
+    const float hLo = static_cast<float>(rowHeading - static_cast<double>(hHi));
+    for (int j = a; j <= b; j += lanes::kWidth) {
+      const lanes::Floats l0 = lanes::load(&e[j].distance);
+      const lanes::Floats l1 = lanes::load(&e[j + 2].distance);
+      const lanes::Floats delta = __builtin_shufflevector(l0, l1, 0, 2, 4, 6);
+      const lanes::Floats bearing = __builtin_shufflevector(l0, l1, 1, 3, 5, 7);
+      // Every cell of the parameterized cone is in Region I or II: none is dropped.
+      const ConeValue<lanes::Floats> v = cone.shape.value(delta, lanes::abs((bearing - hHi) - hLo));
+      float* const out =
+          values + static_cast<std::size_t>(j) * kBatchLanes + static_cast<std::size_t>(k);
+      out[0] = v.p[0];
+      out[K] = v.p[1];
+      out[2 * K] = v.p[2];
+      out[3 * K] = v.p[3];
+    }
+  }
+  if (first > last) return;
+  double* const count = st.count.at(row.cell);
+  double* const mean = job.vsdns ? st.mean.at(row.cell) : nullptr;
+  double* const m2 = job.vsdns ? st.m2.at(row.cell) : nullptr;
+  double* const post = job.map ? st.posterior.at(row.cell) : nullptr;
+  for (int j = first; j <= last; ++j) {
+    const std::size_t at = static_cast<std::size_t>(j) * kBatchLanes;
+    FloatsK pf;
+    std::memcpy(&pf, values + at, sizeof pf);
+    const Doubles p = __builtin_convertvector(pf, Doubles);
+    const Longs inside = (lo <= j) & (hi >= j);
+    const Doubles c = load(count + at);
+    const Doubles n1 = inside ? c + 1.0 : c;
+    store(count + at, n1);
+    if (mean) {  // VsdnsAccumulator::add
+      const Doubles m = load(mean + at);
+      const Doubles delta = p - m;
+      const Doubles mNew = m + delta / n1;
+      const Doubles s = load(m2 + at);
+      const Doubles sNew = s + delta * (p - mNew);
+      store(mean + at, inside ? mNew : m);
+      store(m2 + at, inside ? sNew : s);
+    }
+    if (post) {  // BayesRule::apply, likelihood input
+      const Doubles m = load(post + at);
+      const Doubles num = p * m;
+      const Doubles den = num + (1.0 - p) * (1.0 - m);
+      const Doubles r = num / den;
+      store(post + at, (inside & (den > 0.0)) ? r : m);
+    }
+  }
+}
+
+}  // namespace batch
+
+namespace {
+
+using batch::batchRow;
+using batch::beamsOf;
+using batch::Doubles;
+using batch::K;
+using batch::kCancelStride;
+using batch::Lane;
+using batch::laneOf;
+using batch::LaneState;
+using batch::RowJob;
+using batch::Shape;
+
+// One run of one batch: every reading's cone rows at the batch's widest cone, each row given to
+// batchRow(). Returns false when cancelled or stopped.
+bool mapBatch(const std::vector<Beam>& beams, const GridSpec& grid, const BeamTables& tables,
+              const Lane* lanes, bool vsdns, bool map, LaneState& st,
+              const std::atomic<bool>* cancel, const std::atomic<bool>* stop) {
+  ConeBeam<Shape> cones[K];
+  float reachF[K] = {};
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    if (i % kCancelStride == 0 && ((cancel && cancel->load(std::memory_order_relaxed)) ||
+                                   (stop && stop->load(std::memory_order_relaxed))))
+      return false;
+    const Beam& beam = beams[i];
+    double reach = 0.0, halfAngle = 0.0;
+    bool any = false;
+    for (int k = 0; k < K; ++k) {
+      const Lane& l = lanes[k];
+      cones[k] = l.real ? prepareParameterized<float>(beam.range, beam.maxRange, l.p1, l.p2, l.p3,
+                                                      l.p4, l.p5, l.noEchoFree)
+                        : ConeBeam<Shape>{};
+      if (!cones[k].active) continue;
+      any = true;
+      reach = std::max(reach, cones[k].reach);
+      halfAngle = std::max(halfAngle, cones[k].halfAngle);
+      reachF[k] = static_cast<float>(cones[k].reach);
+    }
+    if (!any) continue;
+    RowJob job{nullptr, cones, reachF, wrapAngle(beam.sensor.heading), vsdns, map, &st, {},
+               {},      {},    {}};
+    if (st.uniform) {
+      for (int k = 0; k < K; ++k) {
+        job.p1[k] = cones[k].shape.p1;
+        job.p4[k] = cones[k].shape.p4;
+        job.emptySlope[k] = cones[k].shape.emptySlope;
+        job.tentSlope[k] = cones[k].shape.tentSlope;
+      }
+    }
+    forEachConeRow(
+        beam.sensor, reach, halfAngle, grid, tables, [](std::size_t) {},
+        [&](const ConeRow& row) {
+          job.row = &row;
+          batchRow(job);
+        });
+  }
+  return true;
+}
+
+// Lane k's VSDNS (VsdnsAccumulator::result: the same cells, sums and order).
+VsdnsAccumulator::Result vsdnsOf(const LaneState& st, int k) {
+  VsdnsAccumulator::Result r;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < st.mean.cells(); ++i) {
+    const double n = st.uniform ? st.shared[i] : st.count.at(i)[k];
+    const double m2 = st.m2.at(i)[k];
+    if (n < 2.0 || !(m2 > 0.0)) continue;
+    const double s = std::sqrt(m2 / (n - 1.0));
+    if (s == 0.0) continue;
+    sum += s;
+    ++r.cellsWithSpread;
+  }
+  if (r.cellsWithSpread > 0) r.vsdns = sum / static_cast<double>(r.cellsWithSpread);
+  return r;
+}
+
+// Lane k's map, as Mapper::snapshot() gives it: the rule's layers of its posterior, observed where
+// any of its readings wrote.
+OccupancyMap mapOf(const LaneState& st, int k, const SweepSettings& settings,
+                   const UpdateRule& rule) {
+  Grid grid(settings.grid, rule.layout());
+  BayesCell* const cells = grid.cells<BayesCell>();
+  Footprint seen;
+  for (std::size_t i = 0; i < st.posterior.cells(); ++i) {
+    cells[i].p = st.posterior.at(i)[k];
+    if (st.uniform ? st.shared[i] > 0 : st.count.at(i)[k] > 0.0)
+      seen.cells.push_back(CellEvidence(static_cast<std::uint32_t>(i), 0, 0, 0));
+  }
+  grid.markWritten(seen);
+  OccupancyMap m;
+  m.spec = grid.spec();
+  m.model = settings.model;
+  m.rule = settings.rule;
+  const std::size_t n = grid.cellCount();
+  m.probability.resize(n);
+  m.native.resize(n);
+  m.level.resize(n);
+  m.filled.resize(n);
+  m.observed.resize(n);
+  m.evidence.resize(n);
+  grid.copyObserved(0, n, m.observed.data());
+  rule.writeLayers(grid, m, 0, n);
+  return m;
+}
+
+}  // namespace
+
+bool batchEvaluable(const SetEvaluationInput& in) {
+  if (in.settings.model != "parameterized") return false;
+  if (!mapsNeeded(in.measures)) return true;
+  return in.settings.rule == "bayes-recursive";
+}
+
+bool evaluateSetsBatched(const SetEvaluationInput& in, const std::vector<ParameterSet>& sets,
+                         const std::vector<std::size_t>& indices, const SetFinished& finished,
+                         const std::atomic<bool>* cancel) {
+  if (!batchEvaluable(in)) throw std::invalid_argument("these sets cannot be mapped in batches");
+  for (std::size_t i : indices) {
+    if (i >= sets.size()) throw std::invalid_argument("a sweep index beyond its sets");
+  }
+  checkSetEvaluationInput(in);
+  if (indices.empty()) return true;
+  const SweepSettings& settings = in.settings;
+  const bool vsdns = in.measures.vsdns;
+  const bool map = mapsNeeded(in.measures);
+
+  // What one Mapper would refuse (a rule the model cannot take, an empty grid, too long a reach),
+  // refused the same way before anything is mapped.
+  std::vector<Lane> lanes(indices.size());
+  double widest = 0.0;
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    lanes[k] = laneOf(settings, sets[indices[k]]);
+    if (k == 0 || lanes[k].p3 > widest) {
+      MapperSettings ms;
+      ms.model = settings.model;
+      ms.rule = settings.rule;
+      ms.parameters = sets[indices[k]];
+      ms.pose = settings.pose;
+      for (const Dataset* d : {in.run, in.secondRun}) {
+        if (d) Mapper check(d->ring, settings.grid, ms);
+      }
+      widest = lanes[k].p3;
+    }
+  }
+  double maxRange = in.run->ring.maxRange;
+  if (in.measures.twoRun) maxRange = std::max(maxRange, in.secondRun->ring.maxRange);
+  const std::shared_ptr<const BeamTables> tables =
+      BeamTables::shared(settings.grid.cellSize, maxRange + widest);
+
+  // Sets of a similar cone side by side, so that a batch's widest cone is little wider than each
+  // of its own: by the no-echo switch, P5, P3, then their place in the sweep.
+  std::vector<std::size_t> order(indices.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return std::tie(lanes[a].noEchoFree, lanes[a].p5, lanes[a].p3, a) <
+           std::tie(lanes[b].noEchoFree, lanes[b].p5, lanes[b].p3, b);
+  });
+  const std::size_t batches = (order.size() + kBatchLanes - 1) / kBatchLanes;
+
+  const std::vector<Beam> beams1 = beamsOf(*in.run, settings.pose);
+  const std::vector<Beam> beams2 =
+      in.measures.twoRun ? beamsOf(*in.secondRun, settings.pose) : std::vector<Beam>{};
+  const std::size_t cells = settings.grid.cellCount();
+
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::atomic<std::size_t> done{0};
+  std::mutex mutex;  // serialises `finished`
+  auto work = [&](unsigned) {
+    LaneState st;
+    std::unique_ptr<UpdateRule> rules[K];
+    while (!stop.load(std::memory_order_relaxed)) {
+      const std::size_t b = next.fetch_add(1, std::memory_order_relaxed);
+      if (b >= batches) return;
+      Lane batch[K];
+      std::size_t positions[K];
+      int used = 0;
+      for (std::size_t j = b * kBatchLanes; j < std::min(order.size(), (b + 1) * kBatchLanes);
+           ++j) {
+        positions[used] = order[j];
+        batch[used++] = lanes[order[j]];
+      }
+      // Uniform: every lane the same cone (the no-echo switch, P3, P5); padding lanes then copy
+      // the first lane, whose results they are not.
+      bool uniform = true;
+      for (int k = 1; k < used; ++k) {
+        uniform = uniform && batch[k].noEchoFree == batch[0].noEchoFree &&
+                  batch[k].p3 == batch[0].p3 && batch[k].p5 == batch[0].p5;
+      }
+      if (uniform) {
+        for (int k = used; k < K; ++k) batch[k] = batch[0];
+      }
+      double prior[K];
+      for (int k = 0; k < K; ++k) prior[k] = batch[k].prior;
+      st.reset(cells, uniform, vsdns, map, prior);
+      if (!mapBatch(beams1, settings.grid, *tables, batch, vsdns, map, st, cancel, &stop)) return;
+      SetEvaluation results[K];
+      std::optional<OccupancyMap> firsts[K];
+      for (int k = 0; k < used; ++k) {
+        std::optional<VsdnsAccumulator::Result> spread;
+        if (vsdns) spread = vsdnsOf(st, k);
+        if (!map) {
+          results[k] = measureSet(in, spread, nullptr, nullptr);
+          continue;
+        }
+        rules[k] = makeUpdateRule(settings.rule);
+        ParameterSet p = defaultParameters(settings.model, settings.rule);
+        for (const auto& [name, value] : sets[indices[positions[k]]].values()) {
+          if (p.has(name)) p.set(name, value);
+        }
+        rules[k]->configure(p);
+        firsts[k] = mapOf(st, k, settings, *rules[k]);
+        if (!in.measures.twoRun)
+          results[k] = measureSet(in, spread, &*firsts[k], nullptr);
+        else
+          results[k].vsdns = spread;
+      }
+      if (in.measures.twoRun) {
+        st.reset(cells, uniform, false, true, prior);
+        if (!mapBatch(beams2, settings.grid, *tables, batch, false, true, st, cancel, &stop))
+          return;
+        for (int k = 0; k < used; ++k) {
+          const OccupancyMap second = mapOf(st, k, settings, *rules[k]);
+          results[k] = measureSet(in, results[k].vsdns, &*firsts[k], &second);
+        }
+      }
+      const std::lock_guard<std::mutex> lock(mutex);
+      for (int k = 0; k < used; ++k) {
+        if (finished) finished(positions[k], results[k]);
+        done.fetch_add(1);
+      }
+    }
+  };
+  const auto threads =
+      static_cast<unsigned>(std::clamp<std::size_t>(batches, 1, parallelThreads()));
+  runParallel(threads, work, [&] { stop.store(true); });
+  return done.load() == indices.size();
+}
+
+}  // namespace sg
