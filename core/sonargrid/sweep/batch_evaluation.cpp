@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <new>
+#include <numbers>
 #include <stdexcept>
 #include <tuple>
 
@@ -29,9 +30,6 @@ constexpr int K = static_cast<int>(kBatchLanes);
 using Doubles = double __attribute__((vector_size(8 * K)));
 using Longs = std::int64_t __attribute__((vector_size(8 * K)));
 using FloatsK = float __attribute__((vector_size(4 * K)));
-
-// How often a batch looks at the cancel and stop flags, in readings.
-constexpr std::size_t kCancelStride = 256;
 
 // One set as the model and the rule read it (ParameterizedModel::configure, BayesRule::configure).
 struct Lane {
@@ -285,27 +283,27 @@ using batch::batchRow;
 using batch::beamsOf;
 using batch::Doubles;
 using batch::K;
-using batch::kCancelStride;
 using batch::Lane;
 using batch::laneOf;
 using batch::LaneState;
 using batch::RowJob;
 using batch::Shape;
 
-// One run of one batch: every reading's cone rows at the batch's widest cone, each row given to
-// batchRow(). Returns false when cancelled or stopped.
-bool mapBatch(const std::vector<Beam>& beams, const GridSpec& grid, const BeamTables& tables,
-              const Lane* lanes, bool vsdns, bool map, LaneState& st,
-              const std::atomic<bool>* cancel, const std::atomic<bool>* stop) {
+// Rows of the grid a batch works through at a time: their cells' state for the batch (some
+// 130 bytes per cell for VSDNS) stays in a core's own cache while every reading that reaches them
+// is applied. Each cell still sees the readings in log order, so the order of the rows changes
+// nothing of any result (the mapper's threads split a map into stripes of rows the same way).
+constexpr int kBandRows = 16;
+
+// Each lane's cone for one reading, and the widest of them.
+struct ReadingCones {
   ConeBeam<Shape> cones[K];
   float reachF[K] = {};
-  for (std::size_t i = 0; i < beams.size(); ++i) {
-    if (i % kCancelStride == 0 && ((cancel && cancel->load(std::memory_order_relaxed)) ||
-                                   (stop && stop->load(std::memory_order_relaxed))))
-      return false;
-    const Beam& beam = beams[i];
-    double reach = 0.0, halfAngle = 0.0;
-    bool any = false;
+  double reach = 0.0, halfAngle = 0.0;
+  bool any = false;
+  void prepare(const Beam& beam, const Lane* lanes) {
+    reach = halfAngle = 0.0;
+    any = false;
     for (int k = 0; k < K; ++k) {
       const Lane& l = lanes[k];
       cones[k] = l.real ? prepareParameterized<float>(beam.range, beam.maxRange, l.p1, l.p2, l.p3,
@@ -317,23 +315,75 @@ bool mapBatch(const std::vector<Beam>& beams, const GridSpec& grid, const BeamTa
       halfAngle = std::max(halfAngle, cones[k].halfAngle);
       reachF[k] = static_cast<float>(cones[k].reach);
     }
-    if (!any) continue;
-    RowJob job{nullptr, cones, reachF, wrapAngle(beam.sensor.heading), vsdns, map, &st, {},
-               {},      {},    {}};
-    if (st.uniform) {
-      for (int k = 0; k < K; ++k) {
-        job.p1[k] = cones[k].shape.p1;
-        job.p4[k] = cones[k].shape.p4;
-        job.emptySlope[k] = cones[k].shape.emptySlope;
-        job.tentSlope[k] = cones[k].shape.tentSlope;
+  }
+};
+
+// The grid rows a cone of `reach` and `halfAngle` can write, with a margin (forEachConeRow's
+// extent in y: the apex, the arc's ends and, where the arc passes straight up or down, its top or
+// bottom).
+std::pair<int, int> rowsOf(const Pose2D& sensor, double reach, double halfAngle,
+                           const GridSpec& grid) {
+  const double h = wrapAngle(sensor.heading);
+  const double R = reach / grid.cellSize;
+  auto covers = [h, halfAngle](double direction) {
+    const double raw = direction - h;
+    return std::abs(raw + detail::turn(raw)) <= halfAngle;
+  };
+  constexpr double kHalfPi = std::numbers::pi / 2.0;
+  const double d1y = std::sin(h - halfAngle), d2y = std::sin(h + halfAngle);
+  const double top = covers(kHalfPi) ? R : std::max({0.0, R * d1y, R * d2y});
+  const double bottom = covers(-kHalfPi) ? -R : std::min({0.0, R * d1y, R * d2y});
+  const double v = (sensor.y() - grid.origin.y()) / grid.cellSize;
+  return {static_cast<int>(std::floor(v + bottom)) - 3, static_cast<int>(std::ceil(v + top)) + 3};
+}
+
+// One run of one batch: band by band of grid rows, every reading that reaches the band, in log
+// order, its cone rows in the band at the batch's widest cone, each row given to batchRow().
+// Returns false when cancelled or stopped.
+bool mapBatch(const std::vector<Beam>& beams, const GridSpec& grid, const BeamTables& tables,
+              const Lane* lanes, bool vsdns, bool map, LaneState& st,
+              const std::atomic<bool>* cancel, const std::atomic<bool>* stop) {
+  // The readings of each band, in log order.
+  const int bands = (grid.height + kBandRows - 1) / kBandRows;
+  std::vector<std::vector<std::uint32_t>> inBand(static_cast<std::size_t>(bands));
+  ReadingCones rc;
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    rc.prepare(beams[i], lanes);
+    if (!rc.any) continue;
+    const auto [lo, hi] = rowsOf(beams[i].sensor, rc.reach, rc.halfAngle, grid);
+    const int b0 = std::max(0, lo) / kBandRows;
+    const int b1 = std::min(grid.height - 1, hi) / kBandRows;
+    for (int b = b0; b <= b1; ++b)
+      inBand[static_cast<std::size_t>(b)].push_back(static_cast<std::uint32_t>(i));
+  }
+  for (int b = 0; b < bands; ++b) {
+    if ((cancel && cancel->load(std::memory_order_relaxed)) ||
+        (stop && stop->load(std::memory_order_relaxed)))
+      return false;
+    RowWindow window;
+    window.begin = b * kBandRows;
+    window.end = window.begin + kBandRows;
+    for (const std::uint32_t i : inBand[static_cast<std::size_t>(b)]) {
+      const Beam& beam = beams[i];
+      rc.prepare(beam, lanes);
+      RowJob job{nullptr, rc.cones, rc.reachF, wrapAngle(beam.sensor.heading), vsdns, map, &st, {},
+                 {},      {},       {}};
+      if (st.uniform) {
+        for (int k = 0; k < K; ++k) {
+          job.p1[k] = rc.cones[k].shape.p1;
+          job.p4[k] = rc.cones[k].shape.p4;
+          job.emptySlope[k] = rc.cones[k].shape.emptySlope;
+          job.tentSlope[k] = rc.cones[k].shape.tentSlope;
+        }
       }
+      forEachConeRow(
+          beam.sensor, rc.reach, rc.halfAngle, grid, tables, [](std::size_t) {},
+          [&](const ConeRow& row) {
+            job.row = &row;
+            batchRow(job);
+          },
+          window);
     }
-    forEachConeRow(
-        beam.sensor, reach, halfAngle, grid, tables, [](std::size_t) {},
-        [&](const ConeRow& row) {
-          job.row = &row;
-          batchRow(job);
-        });
   }
   return true;
 }
@@ -428,15 +478,39 @@ bool evaluateSetsBatched(const SetEvaluationInput& in, const std::vector<Paramet
   const std::shared_ptr<const BeamTables> tables =
       BeamTables::shared(settings.grid.cellSize, maxRange + widest);
 
-  // Sets of a similar cone side by side, so that a batch's widest cone is little wider than each
-  // of its own: by the no-echo switch, P5, P3, then their place in the sweep.
+  // Sets of a similar cone side by side: by the no-echo switch, P5, P3, then their place in the
+  // sweep. Sets of the very same cone fill uniform batches (a count per cell, one model value per
+  // cell for all lanes); a group's last few, fewer than half a batch, go to mixed batches with the
+  // like of other groups (each lane its own cells of the batch's widest cone), which cost more per
+  // set than a uniform batch but less than one padded with many copies.
   std::vector<std::size_t> order(indices.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  auto cone = [&](std::size_t k) {
+    return std::make_tuple(lanes[k].noEchoFree, lanes[k].p5, lanes[k].p3);
+  };
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return std::tie(lanes[a].noEchoFree, lanes[a].p5, lanes[a].p3, a) <
-           std::tie(lanes[b].noEchoFree, lanes[b].p5, lanes[b].p3, b);
+    return std::tuple_cat(cone(a), std::make_tuple(a)) <
+           std::tuple_cat(cone(b), std::make_tuple(b));
   });
-  const std::size_t batches = (order.size() + kBatchLanes - 1) / kBatchLanes;
+  std::vector<std::vector<std::size_t>> batchList, rest;
+  for (std::size_t g = 0; g < order.size();) {
+    std::size_t end = g;
+    while (end < order.size() && cone(order[end]) == cone(order[g])) ++end;
+    for (; g < end; g += std::min(kBatchLanes, end - g)) {
+      const std::size_t n = std::min(kBatchLanes, end - g);
+      std::vector<std::size_t> members(order.begin() + static_cast<std::ptrdiff_t>(g),
+                                       order.begin() + static_cast<std::ptrdiff_t>(g + n));
+      (2 * n >= kBatchLanes ? batchList : rest).push_back(std::move(members));
+    }
+  }
+  std::vector<std::size_t> mixed;
+  for (const auto& r : rest) mixed.insert(mixed.end(), r.begin(), r.end());
+  for (std::size_t g = 0; g < mixed.size(); g += kBatchLanes) {
+    batchList.emplace_back(
+        mixed.begin() + static_cast<std::ptrdiff_t>(g),
+        mixed.begin() + static_cast<std::ptrdiff_t>(std::min(mixed.size(), g + kBatchLanes)));
+  }
+  const std::size_t batches = batchList.size();
 
   const std::vector<Beam> beams1 = beamsOf(*in.run, settings.pose);
   const std::vector<Beam> beams2 =
@@ -456,10 +530,9 @@ bool evaluateSetsBatched(const SetEvaluationInput& in, const std::vector<Paramet
       Lane batch[K];
       std::size_t positions[K];
       int used = 0;
-      for (std::size_t j = b * kBatchLanes; j < std::min(order.size(), (b + 1) * kBatchLanes);
-           ++j) {
-        positions[used] = order[j];
-        batch[used++] = lanes[order[j]];
+      for (std::size_t j : batchList[b]) {
+        positions[used] = j;
+        batch[used++] = lanes[j];
       }
       // Uniform: every lane the same cone (the no-echo switch, P3, P5); padding lanes then copy
       // the first lane, whose results they are not.
