@@ -578,8 +578,10 @@ bool evaluateSetsBatched(const SetEvaluationInput& in, const std::vector<Paramet
           results[k] = measureSet(in, results[k].vsdns, &*firsts[k], &second);
         }
       }
+      // A batch's sets finish together; a cancel between their calls leaves the rest unfinished.
       const std::lock_guard<std::mutex> lock(mutex);
       for (int k = 0; k < used; ++k) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return;
         if (finished) finished(positions[k], results[k]);
         done.fetch_add(1);
       }
