@@ -418,20 +418,7 @@ OccupancyMap mapOf(const LaneState& st, int k, const SweepSettings& settings,
       seen.cells.push_back(CellEvidence(static_cast<std::uint32_t>(i), 0, 0, 0));
   }
   grid.markWritten(seen);
-  OccupancyMap m;
-  m.spec = grid.spec();
-  m.model = settings.model;
-  m.rule = settings.rule;
-  const std::size_t n = grid.cellCount();
-  m.probability.resize(n);
-  m.native.resize(n);
-  m.level.resize(n);
-  m.filled.resize(n);
-  m.observed.resize(n);
-  m.evidence.resize(n);
-  grid.copyObserved(0, n, m.observed.data());
-  rule.writeLayers(grid, m, 0, n);
-  return m;
+  return occupancyMapOf(grid, rule, settings.model, settings.rule);
 }
 
 }  // namespace
