@@ -752,7 +752,9 @@ class TestReproduce : public QObject {
       for (const auto& c : counts) bins << QString::number(c.toInt());
       const QString dash = QString::fromUtf8("–");
       const QStringList fig7 = tableRow("**Fig. 7 under each physics preset**", preset);
-      QCOMPARE(fig7,
+      // The last column, the sweep's time, measures the machine and is not checked.
+      QCOMPARE(fig7.size(), 9);
+      QCOMPARE(fig7.mid(0, 8),
                (QStringList{preset,
                             fixed(edges[0].toDouble(), 6) + dash + fixed(edges[14].toDouble(), 6),
                             fixed(criterion("optimal_mean"), 6),
