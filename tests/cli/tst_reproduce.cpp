@@ -208,6 +208,27 @@ class TestReproduce : public QObject {
   }
   QString file(const QString& rel) const { return out_.filePath(rel); }
 
+  // `reproduce PAPER --json` on the bundled datasets, every preset (arafat with a one-set sweep:
+  // Fig. 6 does not depend on the sweep), run once per paper and kept for the cases that read it;
+  // its files are in bundledDir(PAPER). Empty (and the error printed) when the run failed.
+  QTemporaryDir bundledOut_;
+  std::map<QString, QJsonObject> bundled_;
+  QJsonObject bundledSummary(const QString& paper) {
+    if (const auto it = bundled_.find(paper); it != bundled_.end()) return it->second;
+    QStringList args{"reproduce",  paper,    "--out", bundledDir(paper),
+                     "--datasets", kBundled, "--json"};
+    if (paper == "arafat")
+      args << "--sets"
+           << "1";
+    const Result r = run(args);
+    if (r.status != 0) {
+      qWarning("reproduce %s: %s", qPrintable(paper), r.err.constData());
+      return {};
+    }
+    return bundled_[paper] = QJsonDocument::fromJson(r.out).object()[paper].toObject();
+  }
+  QString bundledDir(const QString& paper) const { return bundledOut_.filePath(paper); }
+
  private slots:
   void initTestCase() {
     QVERIFY(data_.isValid() && out_.isValid());
@@ -315,11 +336,9 @@ class TestReproduce : public QObject {
   // ---- The numbers docs/reproduction.md quotes, from fresh runs on the bundled datasets.
 
   void bundledRaschke1990AsDocumented() {
-    QTemporaryDir out;
-    const Result r =
-        run({"reproduce", "raschke1990", "--out", out.path(), "--datasets", kBundled, "--json"});
-    QVERIFY2(r.status == 0, r.err.constData());
-    const QJsonObject j = QJsonDocument::fromJson(r.out).object()["raschke1990"].toObject();
+    const QJsonObject j = bundledSummary("raschke1990");
+    QVERIFY(j.contains("presets"));
+    const QDir out(bundledDir("raschke1990"));
     auto mean = [&](const char* env, const char* m) {
       return jsonNumber(j, {env, m, "iop_mean_mm"});
     };
@@ -482,11 +501,9 @@ class TestReproduce : public QObject {
   }
 
   void bundledOsullivanAsDocumented() {
-    QTemporaryDir out;
-    const Result r =
-        run({"reproduce", "osullivan", "--out", out.path(), "--datasets", kBundled, "--json"});
-    QVERIFY2(r.status == 0, r.err.constData());
-    const QJsonObject j = QJsonDocument::fromJson(r.out).object()["osullivan"].toObject();
+    const QJsonObject j = bundledSummary("osullivan");
+    QVERIFY(j.contains("presets"));
+    const QDir out(bundledDir("osullivan"));
     const QStringList keys{"correlation_pct", "map_score_pct", "map_score_occupied_pct",
                            "path_false_positive_pct"};
     auto pct = [&](const char* table, const char* variant, const QString& key) {
@@ -610,11 +627,9 @@ class TestReproduce : public QObject {
 
   // Fig. 6 is mapped before the sweep and does not depend on it: one set keeps the run short.
   void bundledArafatFig6AsDocumented() {
-    QTemporaryDir out;
-    const Result r = run({"reproduce", "arafat", "--out", out.path(), "--datasets", kBundled,
-                          "--json", "--sets", "1"});
-    QVERIFY2(r.status == 0, r.err.constData());
-    const QJsonObject all = QJsonDocument::fromJson(r.out).object()["arafat"].toObject();
+    const QJsonObject all = bundledSummary("arafat");
+    QVERIFY(all.contains("presets"));
+    const QDir out(bundledDir("arafat"));
     // The harsh preset's logs, simulated in process, are the logs bundled before issue 16 byte
     // for byte (the SHA-256 of datasets/arafat-room/run-1.sglog then; tst_cli_simulate pins all).
     QFile harsh(out.filePath("datasets-harsh/arafat-room/run-1.sglog"));
@@ -691,6 +706,72 @@ class TestReproduce : public QObject {
                         QString("%1: %2 of 8").arg(verdict).arg(wins));
       }
     }
+  }
+
+  // One number of each paper under each preset, as docs/reproduction.md prints it, written out
+  // here so that a change of the program shows even when the page is rewritten with it. Values
+  // from `sonargrid-cli reproduce PAPER --out DIR --json --threads 2` (every preset; arafat's
+  // Fig. 6 is the same with any --sets) on the bundled datasets, run for issue 16's rewrite of the
+  // page; the page's "Table 1 under each physics preset", "Paper 001 under each physics preset"
+  // and "Fig. 6 under each physics preset" tables hold them.
+  void pinnedPerPreset_data() {
+    QTest::addColumn<QString>("paper");
+    QTest::addColumn<QStringList>("key");
+    QTest::addColumn<int>("decimals");
+    QTest::addColumn<QString>("expected");
+    const auto row = [](const char* name, const char* paper, const QStringList& key, int decimals,
+                        const char* expected) {
+      QTest::newRow(name) << QString(paper) << key << decimals << QString(expected);
+    };
+    // Paper 000 Table 1, HIMM and HPF with multiple obstacles, mean IOP (mm).
+    row("000 clean HIMM", "raschke1990", {"presets", "clean", "multi", "himm", "iop_mean_mm"}, 1,
+        "107.2");
+    row("000 default HIMM", "raschke1990", {"presets", "default", "multi", "himm", "iop_mean_mm"},
+        1, "302.6");
+    row("000 harsh HIMM", "raschke1990", {"presets", "harsh", "multi", "himm", "iop_mean_mm"}, 1,
+        "482.6");
+    row("000 clean HPF", "raschke1990", {"presets", "clean", "multi", "hpf", "iop_mean_mm"}, 1,
+        "57.1");
+    row("000 default HPF", "raschke1990", {"presets", "default", "multi", "hpf", "iop_mean_mm"}, 1,
+        "267.0");
+    row("000 harsh HPF", "raschke1990", {"presets", "harsh", "multi", "hpf", "iop_mean_mm"}, 1,
+        "204.4");
+    // Paper 001, Correlation (%) of the Log and the Simple update (multiple-target model).
+    row("001 clean Log", "osullivan", {"presets", "clean", "rules", "log", "correlation_pct"}, 2,
+        "38.67");
+    row("001 default Log", "osullivan", {"presets", "default", "rules", "log", "correlation_pct"},
+        2, "34.49");
+    row("001 harsh Log", "osullivan", {"presets", "harsh", "rules", "log", "correlation_pct"}, 2,
+        "34.27");
+    row("001 clean Simple", "osullivan", {"presets", "clean", "rules", "simple", "correlation_pct"},
+        2, "41.65");
+    row("001 default Simple", "osullivan",
+        {"presets", "default", "rules", "simple", "correlation_pct"}, 2, "2.36");
+    row("001 harsh Simple", "osullivan", {"presets", "harsh", "rules", "simple", "correlation_pct"},
+        2, "0.55");
+    // Paper 002 Fig. 6, VSDNS of the parameterized model with P3 = 1.0 m and of the standard
+    // model with Tolerance = 1 ft.
+    row("002 clean parameterized", "arafat", {"presets", "clean", "fig6", "parameterized", "vsdns"},
+        6, "0.091706");
+    row("002 default parameterized", "arafat",
+        {"presets", "default", "fig6", "parameterized", "vsdns"}, 6, "0.091548");
+    row("002 harsh parameterized", "arafat", {"presets", "harsh", "fig6", "parameterized", "vsdns"},
+        6, "0.128474");
+    row("002 clean standard 1 ft", "arafat", {"presets", "clean", "fig6", "standard_feet", "vsdns"},
+        6, "0.148125");
+    row("002 default standard 1 ft", "arafat",
+        {"presets", "default", "fig6", "standard_feet", "vsdns"}, 6, "0.130145");
+    row("002 harsh standard 1 ft", "arafat", {"presets", "harsh", "fig6", "standard_feet", "vsdns"},
+        6, "0.163507");
+  }
+  void pinnedPerPreset() {
+    QFETCH(QString, paper);
+    QFETCH(QStringList, key);
+    QFETCH(int, decimals);
+    QFETCH(QString, expected);
+    const QJsonObject j = bundledSummary(paper);
+    QVERIFY(j.contains("presets"));
+    QCOMPARE(fixed(jsonNumber(j, key), decimals), expected);
   }
 
   // The full sweep (1440 sets, two maps each) under the three presets: most of an hour on two
