@@ -8,12 +8,15 @@
 // are deterministic (the same logs, one grid per experiment, maps bit-identical whatever the
 // thread count), so every number must match to the digits the page prints: the tolerance is the
 // page's own rounding and nothing more. Pinned: paper 000's Table 1 and the per-run figures
-// quoted around it (raschke1990, under a second), paper 001's two tables and the figures quoted
-// from them and from runs.csv (osullivan, a few seconds), paper 002's Fig. 6 table and findings
-// (arafat with a one-set sweep, Fig. 6 does not depend on the sweep). Paper 002's Table 1, the
-// histogram and the lowest bin need the full 1440-set sweep (minutes on two cores), so they are
-// checked only when SONARGRID_REPRODUCE_SWEEP=1 is set; the "Sensitivity check" tables come from
-// other commands on regenerated logs and are not checked here.
+// quoted around it (raschke1990), paper 001's two tables and the figures quoted from them and from
+// runs.csv (osullivan), paper 002's Fig. 6 table and findings (arafat with a one-set sweep, Fig. 6
+// does not depend on the sweep), each under the three physics presets; the verdicts of the page's
+// "Findings at a glance" recomputed from those runs by the page's criteria; and one number per
+// paper and preset written out here as well (pinnedPerPreset). Paper 002's Table 1, the histogram,
+// the lowest bin and finding 2 need the full 1440-set sweep under each preset (most of an hour on
+// two loaded cores), so they are checked only on request (bundledArafatSweepAsDocumented); the
+// "Sensitivity check" tables and finding 3's scores come from other commands on regenerated logs
+// and are not checked here.
 
 #include <QCryptographicHash>
 #include <QJsonArray>
