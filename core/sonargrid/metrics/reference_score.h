@@ -41,6 +41,9 @@ enum class Metric {
 
 const std::vector<Metric>& allMetrics();
 const char* metricName(Metric m);  // "iop", "correlation", ..., "path_false_positive"
+// The metric's key in `sonargrid-cli score --json` and the GUI's metrics JSON (docs/cli.md):
+// "iop_mm", "correlation_pct", ..., "iou". A contract: never rename one.
+const char* metricJsonKey(Metric m);
 // A comma-separated list of names; "path" stands for both path metrics. Throws
 // std::invalid_argument naming an unknown or empty name and listing the known ones.
 std::set<Metric> parseMetricList(const std::string& list);
