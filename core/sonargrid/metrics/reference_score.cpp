@@ -136,15 +136,38 @@ std::optional<double> ReferenceScore::value(Metric m) const {
 std::vector<std::uint8_t> commonObservedCells(const std::vector<const OccupancyMap*>& maps) {
   if (maps.empty()) throw std::invalid_argument("common cells: no map given");
   for (const OccupancyMap* m : maps) {
-    if (m == nullptr) throw std::invalid_argument("common cells: a null map");
-    if (!(m->spec == maps.front()->spec))
+    if (m != nullptr && !(m->spec == maps.front()->spec))
       throw std::invalid_argument("common cells: the maps are not on the same grid");
+  }
+  return commonObservedCells(maps, 0);
+}
+
+std::vector<std::uint8_t> commonObservedCells(const std::vector<const OccupancyMap*>& maps,
+                                              std::size_t on) {
+  if (maps.empty()) throw std::invalid_argument("common cells: no map given");
+  if (on >= maps.size()) throw std::invalid_argument("common cells: no map of that index");
+  for (const OccupancyMap* m : maps) {
+    if (m == nullptr) throw std::invalid_argument("common cells: a null map");
     if (m->observed.size() != m->spec.cellCount())
       throw std::invalid_argument("common cells: a map's observed layer does not match its grid");
   }
-  std::vector<std::uint8_t> common(maps.front()->observed.size(), 1);
-  for (const OccupancyMap* m : maps) {
-    for (std::size_t i = 0; i < common.size(); ++i) common[i] = common[i] && m->observed[i] ? 1 : 0;
+  const OccupancyMap& own = *maps[on];
+  const GridSpec& g = own.spec;
+  std::vector<std::uint8_t> common(own.observed.size(), 0);
+  for (std::size_t c = 0; c < common.size(); ++c) {
+    if (own.observed[c] == 0) continue;
+    const Position centre = g.cellCentre(g.fromLinear(c));
+    bool all = true;
+    for (std::size_t j = 0; j < maps.size() && all; ++j) {
+      const OccupancyMap& other = *maps[j];
+      if (other.spec == g) {
+        all = other.observed[c] != 0;  // the same cell
+      } else {
+        const CellIndex k = other.spec.worldToCell(centre);
+        all = other.spec.contains(k) && other.observed[other.spec.linear(k)] != 0;
+      }
+    }
+    common[c] = all ? 1 : 0;
   }
   return common;
 }

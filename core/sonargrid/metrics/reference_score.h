@@ -69,6 +69,13 @@ struct ScoreOptions {
 // std::invalid_argument when `maps` is empty, holds a null pointer, or the maps are not all on the
 // same grid.
 std::vector<std::uint8_t> commonObservedCells(const std::vector<const OccupancyMap*>& maps);
+// The same on the grid of maps[on], for maps that may lie on different grids (e.g. of other cell
+// sizes): a cell counts when maps[on] observed it and every other map observed the cell that
+// holds its centre (one outside another map's grid does not count). Throws std::invalid_argument
+// when `maps` is empty, `on` is not an index of it, a map is null, or a map's observed layer does
+// not match its grid.
+std::vector<std::uint8_t> commonObservedCells(const std::vector<const OccupancyMap*>& maps,
+                                              std::size_t on);
 
 // `map` with every cell outside `mask` made never observed (p 0.5, level 8, not filled, no
 // evidence): what ScoreOptions::cellMask scores. An empty mask returns the map unchanged. Throws
