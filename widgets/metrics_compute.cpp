@@ -8,6 +8,7 @@
 #include "dmin_overlay.h"
 #include "sonargrid/metrics/index_of_performance.h"
 #include "sonargrid/reference/actual_position_grid.h"
+#include "sonargrid/sweep/sweep_grid.h"
 
 namespace sg::ui {
 namespace {
@@ -175,13 +176,8 @@ GridSpec goodnessGrid(const Dataset& run, const Dataset* secondRun, PoseSource p
                       double cellSize) {
   const GridSpec a = run.fittingGrid(pose, cellSize);
   if (!secondRun) return a;
-  // As `sonargrid-cli goodness`: both fitting grids are snapped to multiples of the cell size, so
-  // their union is too and each run's cells line up with the other's.
-  const GridSpec b = secondRun->fittingGrid(pose, cellSize);
-  const Position lo = a.origin.cwiseMin(b.origin);
-  const Position hi = (a.origin + Position(a.widthMetres(), a.heightMetres()))
-                          .cwiseMax(b.origin + Position(b.widthMetres(), b.heightMetres()));
-  return GridSpec::covering(lo, hi, a.cellSize, 0.0);
+  // As `sonargrid-cli goodness`: one grid over both runs, their cells lined up.
+  return gridOverRuns(a, secondRun->fittingGrid(pose, cellSize));
 }
 
 std::optional<MetricsResult> computeMetrics(const MetricsInput& in,

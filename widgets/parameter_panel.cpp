@@ -323,7 +323,7 @@ bool ParameterPanel::applyPreset(const QString& name) {
   next.pose = settings_.pose;
   const bool same = next.model == settings_.model && next.rule == settings_.rule &&
                     next.parameters == settings_.parameters;
-  setSettings(next);
+  setSettings(next, /*ruleNamed=*/true);  // a preset names its rule: no "rule changed" note
   if (!same) changed();
   return true;
 }

@@ -240,14 +240,10 @@ std::shared_ptr<SweepJob> SweepView::makeJob() const {
       throw std::invalid_argument(
           tr("two-run needs a second log of the same route.").toStdString());
     job->secondRun = inputs_.secondRun;
-    // One grid over both runs, as `sonargrid-cli sweep --second-log` makes it: both fitting
-    // grids are snapped to multiples of the cell size, so the union is too.
-    const GridSpec a = job->settings.grid;
-    const GridSpec b = inputs_.secondRun->fittingGrid(inputs_.settings.pose, inputs_.cellSize);
-    const Position lo = a.origin.cwiseMin(b.origin);
-    const Position hi = (a.origin + Position(a.widthMetres(), a.heightMetres()))
-                            .cwiseMax(b.origin + Position(b.widthMetres(), b.heightMetres()));
-    job->settings.grid = GridSpec::covering(lo, hi, a.cellSize, 0.0);
+    // One grid over both runs, as `sonargrid-cli sweep --second-log` makes it.
+    job->settings.grid =
+        gridOverRuns(job->settings.grid,
+                     inputs_.secondRun->fittingGrid(inputs_.settings.pose, inputs_.cellSize));
   }
   return job;
 }

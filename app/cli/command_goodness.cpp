@@ -12,19 +12,10 @@
 #include "sonargrid/metrics/map_entropy.h"
 #include "sonargrid/metrics/two_run_comparison.h"
 #include "sonargrid/metrics/vsdns.h"
+#include "sonargrid/sweep/sweep_grid.h"
 
 namespace sg::cli {
 namespace {
-
-// One grid of the chosen cell size holding both runs; both fitting grids are snapped to multiples
-// of the cell size, so the union is too and each run's cells line up with the other's.
-GridSpec commonGrid(const GridSpec& a, const GridSpec& b) {
-  const Position lo = a.origin.cwiseMin(b.origin);
-  const Position hi = (a.origin + Position(a.widthMetres(), a.heightMetres()))
-                          .cwiseMax(b.origin + Position(b.widthMetres(), b.heightMetres()));
-  GridSpec g = GridSpec::covering(lo, hi, a.cellSize, 0.0);
-  return g;
-}
 
 nlohmann::ordered_json orNull(const std::optional<double>& v) {
   return v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);
@@ -45,7 +36,7 @@ int runGoodness(Arguments& args) {
   if (second) {
     const GridSpec other = fittingGridOf(*second, o, *secondLog);
     try {
-      grid = commonGrid(grid, other);
+      grid = gridOverRuns(grid, other);
     } catch (const GridLimitError& e) {
       throw e.inFile(o.log + " and " + *secondLog);  // each fits; the two together do not
     }

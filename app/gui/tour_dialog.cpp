@@ -26,7 +26,7 @@ void usePreset(MainWindow& w, const char* name) {
   if (!preset) return;
   MapperSettings s = applyPreset(*preset);
   s.pose = w.mapperSettings().pose;
-  w.setMapperSettings(s);
+  w.setMapperSettings(s, /*ruleNamed=*/true);  // a preset names its rule
 }
 
 void raiseDock(MainWindow& w, const char* objectName) {

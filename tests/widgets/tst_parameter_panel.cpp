@@ -459,6 +459,9 @@ void TstParameterPanel::presetsSetCitedValues() {
   // Paper 002 Table 1 col. 5: P1 0.03, P2 0.171, 2·P3 0.786, P4 0.97, P5 6.14.
   QVERIFY(panel.applyPreset("paper002-table1-histogram"));
   QCOMPARE(spy.count(), 2);
+  // hpf × addition → parameterized × bayes-recursive: the preset names both, so no note says the
+  // rule changed with the model.
+  QCOMPARE(panel.statusText(), QString());
   const MapperSettings s = panel.settings();
   QCOMPARE(s.model, std::string("parameterized"));
   QCOMPARE(s.rule, std::string("bayes-recursive"));
@@ -473,6 +476,9 @@ void TstParameterPanel::presetsSetCitedValues() {
   // Applying it again changes nothing and emits nothing; moving a slider makes it "Custom".
   QVERIFY(panel.applyPreset("paper002-table1-histogram"));
   QCOMPARE(spy.count(), 2);
+  // hpf × addition → parameterized × bayes-recursive: the preset names both, so no note says the
+  // rule changed with the model.
+  QCOMPARE(panel.statusText(), QString());
   QTest::keyClick(panel.sliderFor("p2"), Qt::Key_Right);
   QCOMPARE(presets->currentIndex(), 0);
   QVERIFY(!panel.applyPreset("no-such-preset"));
