@@ -88,6 +88,20 @@ QString fitting(const QFontMetrics& fm, const QString& full, const QString& brie
   return fm.horizontalAdvance(full) <= width ? full : brief;
 }
 
+// The titles of a plot's axes in `area`: `xFull` (`xBrief` where it does not fit) centred under
+// `plot`, its top `below` font heights under the plot, and `y` turned up the left edge.
+void drawAxisTitles(QPainter& painter, const QFontMetrics& fm, const QRect& area, const QRect& plot,
+                    int fp, double below, const QString& xFull, const QString& xBrief,
+                    const QString& y) {
+  painter.drawText(QRectF(plot.left(), plot.bottom() + fp * below, plot.width(), fp * 1.4),
+                   Qt::AlignHCenter | Qt::TextDontClip, fitting(fm, xFull, xBrief, plot.width()));
+  painter.save();
+  painter.translate(area.left() + fp * 0.9, plot.center().y());
+  painter.rotate(-90);
+  painter.drawText(QRectF(-plot.height() / 2.0, -fp, plot.height(), fp * 1.4), Qt::AlignHCenter, y);
+  painter.restore();
+}
+
 // The model's own words for its regions, as its ModelInfo declares them (paper 002 §3.1 names
 // Murphy's I, II and III; the others are named after what the region writes).
 QString regionLabel(const ModelInfo& info, BeamRegion region, bool beyondReading) {
@@ -328,16 +342,8 @@ void drawConeMap(QPainter& painter, const BeamScene& scene, const BeamExtent& ex
     painter.drawText(QPointF(p.x() - fp * 0.6 - fm.horizontalAdvance(text), p.y() + fp * 0.35),
                      text);
   }
-  painter.drawText(QRectF(plot.left(), plot.bottom() + fp * 1.5, plot.width(), fp * 1.4),
-                   Qt::AlignHCenter | Qt::TextDontClip,
-                   fitting(fm, QStringLiteral("x [m] along the acoustic axis"),
-                           QStringLiteral("x [m]"), plot.width()));
-  painter.save();
-  painter.translate(area.left() + fp * 0.9, plot.center().y());
-  painter.rotate(-90);
-  painter.drawText(QRectF(-plot.height() / 2.0, -fp, plot.height(), fp * 1.4), Qt::AlignHCenter,
-                   QStringLiteral("y [m]"));
-  painter.restore();
+  drawAxisTitles(painter, fm, area, plot, fp, 1.5, QStringLiteral("x [m] along the acoustic axis"),
+                 QStringLiteral("x [m]"), QStringLiteral("y [m]"));
 
   // The sensor, and where the reading s lies on the axis.
   const QPointF origin = frame.toPixel(0.0, 0.0);
@@ -468,16 +474,8 @@ void drawAxialProfile(QPainter& painter, const BeamScene& scene, const BeamExten
     painter.drawText(QPointF(plot.left() - fp * 0.6 - fm.horizontalAdvance(text), y + fp * 0.35),
                      text);
   }
-  painter.drawText(QRectF(plot.left(), plot.bottom() + fp * 1.6, plot.width(), fp * 1.4),
-                   Qt::AlignHCenter | Qt::TextDontClip,
-                   fitting(fm, QStringLiteral("r [m] on the axis (α = 0)"),
-                           QStringLiteral("r [m], α = 0"), plot.width()));
-  painter.save();
-  painter.translate(area.left() + fp * 0.9, plot.center().y());
-  painter.rotate(-90);
-  painter.drawText(QRectF(-plot.height() / 2.0, -fp, plot.height(), fp * 1.4), Qt::AlignHCenter,
-                   QStringLiteral("P(occ)"));
-  painter.restore();
+  drawAxisTitles(painter, fm, area, plot, fp, 1.6, QStringLiteral("r [m] on the axis (α = 0)"),
+                 QStringLiteral("r [m], α = 0"), QStringLiteral("P(occ)"));
   painter.restore();
 }
 

@@ -59,26 +59,6 @@ struct ComparisonTable::Outcome {
   std::shared_ptr<const std::map<std::string, std::shared_ptr<const OccupancyMap>>> maps;
 };
 
-std::vector<std::uint8_t> commonObservedMask(const std::vector<const OccupancyMap*>& maps,
-                                             std::size_t i) {
-  const OccupancyMap& own = *maps.at(i);
-  const GridSpec& g = own.spec;
-  std::vector<std::uint8_t> mask(g.cellCount(), 0);
-  for (std::size_t c = 0; c < mask.size(); ++c) {
-    if (own.observed[c] == 0) continue;
-    const Position centre = g.cellCentre(g.fromLinear(c));
-    bool all = true;
-    for (std::size_t j = 0; j < maps.size() && all; ++j) {
-      if (j == i) continue;
-      const OccupancyMap& other = *maps[j];
-      const CellIndex k = other.spec.worldToCell(centre);
-      all = other.spec.contains(k) && other.observed[other.spec.linear(k)] != 0;
-    }
-    mask[c] = all ? 1 : 0;
-  }
-  return mask;
-}
-
 ComparisonTable::ComparisonTable(QWidget* parent)
     : QWidget(parent),
       status_(new QLabel(this)),
@@ -230,7 +210,7 @@ void ComparisonTable::start() {
         if (reference) {
           in.goodness = false;
           in.secondRun = nullptr;  // the two runs are compared once, in the view of each map
-          in.score.cellMask = commonObservedMask(built, i);
+          in.score.cellMask = commonObservedCells(built, i);
           const std::optional<MetricsResult> common = computeMetrics(in, cancel.get());
           if (!common) throw std::runtime_error("cancelled");
           r.common = *common;

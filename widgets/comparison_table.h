@@ -3,8 +3,9 @@
 // The comparison table (a dock): pinned configurations (model, rule, parameters, pose, cell size)
 // as rows, every metric side by side in the style of the papers' tables. Against a reference the
 // metrics are computed on the cells that ALL pinned maps observed (sg::ScoreOptions::cellMask of
-// commonObservedMask()), so that every row is judged on the same ground; a second view scores each
-// map on its own cells. Without a reference each row shows paper 002's goodness of its own map.
+// sg::commonObservedCells() on each map's grid), so that every row is judged on the same ground;
+// a second view scores each map on its own cells. Without a reference each row shows paper 002's
+// goodness of its own map.
 //
 // Each row's map is built from its configuration (the log mapped again on a worker thread, maps
 // kept while their configuration stays pinned); a newer set of rows cancels the stale computation,
@@ -36,11 +37,6 @@ struct ComparisonRow {
 
 // Which cells the table's metrics are computed over.
 enum class CellSet { Common, EachMap };
-
-// For maps[i]: 1 where its cell is observed and the cell of every other map holding that cell's
-// centre is observed too (the cells all the maps observed, on maps[i]'s grid).
-std::vector<std::uint8_t> commonObservedMask(const std::vector<const OccupancyMap*>& maps,
-                                             std::size_t i);
 
 class ComparisonTable : public QWidget {
   Q_OBJECT

@@ -84,14 +84,7 @@ void paintDminTint(QPainter& p, const GridScene& scene, const ViewTransform& vie
   if (!scene.dminTint || scene.dminTint->isNull() || !scene.map ||
       !(scene.map->spec == scene.dminSpec))
     return;
-  const GridSpec& g = scene.dminSpec;
-  const QPointF topLeft = view.toPixel(g.origin + Position(0.0, g.heightMetres()), size);
-  const QPointF bottomRight = view.toPixel(g.origin + Position(g.widthMetres(), 0.0), size);
-  p.save();
-  p.setClipRect(QRect(QPoint(0, 0), size));
-  p.setRenderHint(QPainter::SmoothPixmapTransform, false);
-  p.drawImage(QRectF(topLeft, bottomRight), *scene.dminTint);
-  p.restore();
+  drawCellImage(p, *scene.dminTint, scene.dminSpec, view, size);
   paintScale(p, size);
 }
 

@@ -318,6 +318,17 @@ QImage renderGridImage(const GridScene& scene, const LevelPalette& palette, Over
   return image;
 }
 
+void drawCellImage(QPainter& painter, const QImage& cells, const GridSpec& grid,
+                   const ViewTransform& view, const QSize& size) {
+  const QPointF topLeft = view.toPixel(grid.origin + Position(0.0, grid.heightMetres()), size);
+  const QPointF bottomRight = view.toPixel(grid.origin + Position(grid.widthMetres(), 0.0), size);
+  painter.save();
+  painter.setClipRect(QRect(QPoint(0, 0), size));
+  painter.setRenderHint(QPainter::SmoothPixmapTransform, false);
+  painter.drawImage(QRectF(topLeft, bottomRight), cells);
+  painter.restore();
+}
+
 void paintGridVector(QPainter& painter, const GridScene& scene, const LevelPalette& palette,
                      Overlays overlays, const ViewTransform& view, const QSize& size) {
   painter.fillRect(QRect(QPoint(0, 0), size), backgroundColour());
@@ -336,13 +347,7 @@ void paintGridVector(QPainter& painter, const GridScene& scene, const LevelPalet
                                        palette[std::size_t(k)].b);
       }
     }
-    const QPointF topLeft = view.toPixel(g.origin + Position(0.0, g.heightMetres()), size);
-    const QPointF bottomRight = view.toPixel(g.origin + Position(g.widthMetres(), 0.0), size);
-    painter.save();
-    painter.setClipRect(QRect(QPoint(0, 0), size));
-    painter.setRenderHint(QPainter::SmoothPixmapTransform, false);
-    painter.drawImage(QRectF(topLeft, bottomRight), cells);
-    painter.restore();
+    drawCellImage(painter, cells, g, view, size);
   }
   paintOverlays(painter, scene, palette, overlays, view, size);
 }

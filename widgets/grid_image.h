@@ -108,6 +108,12 @@ FocusArea focusArea(const Dataset* data, PoseSource pose, const ReferenceMap* re
 QImage renderGridCells(const OccupancyMap* map, const LevelPalette& palette,
                        const ViewTransform& view, const QSize& size);
 
+// Draws `cells`, one pixel per cell of `grid` (the image's top row the grid's northmost), over
+// the grid's place in the view, clipped to `size` and without smoothing (a cell stays a square of
+// one colour at any zoom): the vector export's cells and the D_min tint.
+void drawCellImage(QPainter& painter, const QImage& cells, const GridSpec& grid,
+                   const ViewTransform& view, const QSize& size);
+
 // Draws the chosen overlays over an already painted grid (shared by every backend and the SVG
 // export).
 void paintOverlays(QPainter& painter, const GridScene& scene, const LevelPalette& palette,

@@ -24,87 +24,65 @@ QString source(const char* what, const char* paper, const char* where) {
   return QStringLiteral("%1\n%2, %3 (docs/metrics.md)").arg(tr(what), tr(paper), tr(where));
 }
 
-// The JSON key of each metric of sg::Metric, as `sonargrid-cli score --json` writes it.
-struct ReferenceKey {
-  Metric metric;
-  const char* key;
-};
-constexpr ReferenceKey kReferenceKeys[] = {
-    {Metric::Iop, "iop_mm"},
-    {Metric::Correlation, "correlation_pct"},
-    {Metric::MapScore, "map_score_pct"},
-    {Metric::MapScoreOccupied, "map_score_occupied_pct"},
-    {Metric::Match, "match_bits"},
-    {Metric::PathFalsePositive, "path_false_positive_pct"},
-    {Metric::PathFalseNegative, "path_false_negative_pct"},
-    {Metric::CrossEntropy, "cross_entropy"},
-    {Metric::Brier, "brier"},
-    {Metric::Auc, "auc"},
-    {Metric::Precision, "precision"},
-    {Metric::Recall, "recall"},
-    {Metric::F1, "f1"},
-    {Metric::Iou, "iou"},
-};
-
 }  // namespace
 
 const std::vector<MetricInfo>& referenceMetricInfo() {
   static const std::vector<MetricInfo> info = {
-      {"iop_mm", tr("IOP"), tr("mm"), 1,
+      {metricJsonKey(Metric::Iop), tr("IOP"), tr("mm"), 1,
        source("Index of Performance: Σ D_min·CV / Σ CV over the filled cells, D_min the "
               "distance to the nearest reference (APG) cell. Lower is better.",
               kPaper000, "§3, eq 9")},
-      {"correlation_pct", tr("Correlation"), tr("%"), 2,
+      {metricJsonKey(Metric::Correlation), tr("Correlation"), tr("%"), 2,
        source("Pearson correlation of p(occ) with the ideal map over the evaluated cells "
               "(after Baron 1981). Higher is better.",
               kPaper001, "§4, benchmark 1"),
        false},
-      {"map_score_pct", tr("Map score"), tr("%"), 2,
+      {metricJsonKey(Metric::MapScore), tr("Map score"), tr("%"), 2,
        source("100 · mean (p − ideal)² over the evaluated cells (after Martin & Moravec 1996). "
               "Lower is better.",
               kPaper001, "§4, benchmark 2")},
-      {"map_score_occupied_pct", tr("Map score, occupied"), tr("%"), 2,
+      {metricJsonKey(Metric::MapScoreOccupied), tr("Map score, occupied"), tr("%"), 2,
        source("The map score over the cells occupied in either map (p > 0.5 or ideal "
               "occupied). Lower is better.",
               kPaper001, "§4, benchmark 3")},
-      {"match_bits", tr("Match"), tr("bits"), 1,
+      {metricJsonKey(Metric::Match), tr("Match"), tr("bits"), 1,
        source("Moravec–Blackwell match Σ (1 + log2(p·q + (1 − p)(1 − q))), after Martin & "
               "Moravec 1996. Higher is better.",
               kPaper001, "§4, benchmark 2 (the match it derives from)"),
        false},
-      {"path_false_positive_pct", tr("Path false positives"), tr("%"), 1,
+      {metricJsonKey(Metric::PathFalsePositive), tr("Path false positives"), tr("%"), 1,
        source("Paths planned on the built map (A*, 8-connected) that collide with the ideal "
               "map's obstacles, of the paths found. Lower is better.",
               kPaper001, "§4, benchmark 4")},
-      {"path_false_negative_pct", tr("Path false negatives"), tr("%"), 1,
+      {metricJsonKey(Metric::PathFalseNegative), tr("Path false negatives"), tr("%"), 1,
        source("Start/goal pairs joined in the ideal map with no path on the built map. Lower is "
               "better.",
               kPaper001, "§4, benchmark 4 (its converse)")},
-      {"cross_entropy", tr("Cross-entropy"), tr("bits/cell"), 4,
+      {metricJsonKey(Metric::CrossEntropy), tr("Cross-entropy"), tr("bits/cell"), 4,
        source("Mean −log2 of the probability the map gives the ideal state. Beyond the papers; "
               "lower is better.",
               kPaper001, "ideal map of §4")},
-      {"brier", tr("Brier score"), QString(), 4,
+      {metricJsonKey(Metric::Brier), tr("Brier score"), QString(), 4,
        source("Mean (p − ideal)², the map score / 100. Beyond the papers; lower is better.",
               kPaper001, "ideal map of §4")},
-      {"auc", tr("ROC AUC"), QString(), 4,
+      {metricJsonKey(Metric::Auc), tr("ROC AUC"), QString(), 4,
        source("Area under the ROC curve of p(occ) for the ideal occupied cells. Beyond the papers; "
               "higher is better.",
               kPaper001, "ideal map of §4"),
        false},
-      {"precision", tr("Precision (occupied)"), QString(), 4,
+      {metricJsonKey(Metric::Precision), tr("Precision (occupied)"), QString(), 4,
        source("TP / (TP + FP), occupied when p > 0.5. Beyond the papers; higher is better.",
               kPaper001, "ideal map of §4"),
        false},
-      {"recall", tr("Recall (occupied)"), QString(), 4,
+      {metricJsonKey(Metric::Recall), tr("Recall (occupied)"), QString(), 4,
        source("TP / (TP + FN), occupied when p > 0.5. Beyond the papers; higher is better.",
               kPaper001, "ideal map of §4"),
        false},
-      {"f1", tr("F1 (occupied)"), QString(), 4,
+      {metricJsonKey(Metric::F1), tr("F1 (occupied)"), QString(), 4,
        source("2 TP / (2 TP + FP + FN). Beyond the papers; higher is better.", kPaper001,
               "ideal map of §4"),
        false},
-      {"iou", tr("IoU (occupied)"), QString(), 4,
+      {metricJsonKey(Metric::Iou), tr("IoU (occupied)"), QString(), 4,
        source("TP / (TP + FP + FN), the Jaccard index of the occupied cells. Beyond the papers; "
               "higher is better.",
               kPaper001, "ideal map of §4"),
@@ -156,9 +134,9 @@ const std::vector<MetricInfo>& goodnessMetricInfo() {
 std::vector<MetricsResult::Value> MetricsResult::values() const {
   std::vector<Value> out;
   if (score) {
-    for (const ReferenceKey& k : kReferenceKeys) {
-      if (score->computed.count(k.metric) == 0) continue;  // as score --json: omitted
-      out.push_back({k.key, score->value(k.metric), false});
+    for (Metric m : allMetrics()) {
+      if (score->computed.count(m) == 0) continue;  // as score --json: omitted
+      out.push_back({metricJsonKey(m), score->value(m), false});
     }
     out.push_back({"cells_evaluated", static_cast<double>(score->cellsEvaluated), true});
   }

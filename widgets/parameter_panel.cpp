@@ -232,7 +232,7 @@ QDoubleSpinBox* ParameterPanel::spinBoxFor(const QString& name) const {
   return rowsHost_->findChild<QDoubleSpinBox*>(QStringLiteral("spin_") + name);
 }
 
-void ParameterPanel::setSettings(const MapperSettings& settings) {
+void ParameterPanel::setSettings(const MapperSettings& settings, bool ruleNamed) {
   MapperSettings next = settings;
   try {
     const Compatibility c = compatibility(settings.model, settings.rule);
@@ -246,11 +246,13 @@ void ParameterPanel::setSettings(const MapperSettings& settings) {
   const bool same = !rebuild && next.parameters == settings_.parameters;
   // A new model with its paper's rule (the Mapping menu, undo, a project): say that the rule
   // changed too. Settings the panel already shows (its own change coming back) keep the note.
-  // (Not the first settings the panel is given: its own defaults were never the user's.)
+  // (Not the first settings the panel is given: its own defaults were never the user's; nor a
+  // rule the user named.)
   const bool given = property("settingsGiven").toBool();
-  const QString note = given && next.model != settings_.model && next.rule != settings_.rule
-                           ? ruleChangeNote(settings_.rule, next.model, next.rule)
-                           : QString();
+  const QString note =
+      given && !ruleNamed && next.model != settings_.model && next.rule != settings_.rule
+          ? ruleChangeNote(settings_.rule, next.model, next.rule)
+          : QString();
   setProperty("settingsGiven", true);
   settings_ = next;
   updating_ = true;

@@ -29,7 +29,10 @@ class ParameterPanel : public QWidget {
 
   // Shows `settings` without emitting settingsChanged. An unknown model or rule name, or an
   // incompatible pair, is refused (the panel keeps its settings) and reported in the status line.
-  void setSettings(const sg::MapperSettings& settings);
+  // When the model and the rule both change (the Mapping menu's model, undo, a project) a note
+  // says that the rule changed with the model; not when `ruleNamed` (the user named this rule
+  // themselves, e.g. on the command line).
+  void setSettings(const sg::MapperSettings& settings, bool ruleNamed = false);
   sg::MapperSettings settings() const { return settings_; }
 
   // The widgets of one parameter (objectNames "slider_<name>" and "spin_<name>"), or nullptr.

@@ -6,24 +6,17 @@
 #include <QCoreApplication>
 #include <QElapsedTimer>
 #include <QEventLoop>
-#include <QGroupBox>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QItemSelectionModel>
 #include <QLabel>
-#include <QLineEdit>
-#include <QListWidget>
 #include <QProgressBar>
 #include <QPushButton>
-#include <QRegularExpression>
 #include <QSplitter>
 #include <QTableView>
-#include <QTableWidget>
 #include <QTimer>
 #include <QVBoxLayout>
 #include <algorithm>
-#include <cmath>
-#include <set>
 #include <stdexcept>
 
 #include "sonargrid/concurrency.h"
@@ -36,50 +29,8 @@
 namespace sg::ui {
 namespace {
 
-enum ParameterColumn { kSweepColumn, kUnitColumn, kRangeColumn, kBaseColumn, kValuesColumn };
-
 QString qs(const std::string& s) {
   return QString::fromStdString(s);
-}
-
-// "p=text" split at the first '='.
-std::pair<std::string, std::string> splitAxis(const std::string& axis) {
-  const auto eq = axis.find('=');
-  if (eq == std::string::npos) return {axis, {}};
-  return {axis.substr(0, eq), axis.substr(eq + 1)};
-}
-
-// Four values spread over the declared range, a start the user edits.
-std::string suggestedValues(const ParameterSpec& spec) {
-  std::vector<double> values;
-  for (int k = 0; k < 4; ++k) {
-    double v = spec.min + (spec.max - spec.min) * k / 3.0;
-    if (spec.integer) {
-      v = std::round(v);
-    } else if (v != 0.0) {
-      const double scale = std::pow(10.0, 2.0 - std::floor(std::log10(std::abs(v))));
-      v = std::clamp(std::round(v * scale) / scale, spec.min, spec.max);
-    }
-    if (std::find(values.begin(), values.end(), v) == values.end()) values.push_back(v);
-  }
-  std::string out;
-  for (double v : values) out += (out.empty() ? "" : ",") + shortestText(v);
-  return out;
-}
-
-// "1 set", "12 sets" (the app ships no translations, so %n plurals would print "set(s)").
-QString setsText(std::size_t n) {
-  return n == 1 ? SweepView::tr("1 set") : SweepView::tr("%1 sets").arg(n);
-}
-
-std::vector<std::string> splitTies(const QString& text) {
-  std::vector<std::string> out;
-  for (const QString& part :
-       text.split(QRegularExpression(QStringLiteral("[;,]")), Qt::SkipEmptyParts)) {
-    const QString t = part.trimmed();
-    if (!t.isEmpty()) out.push_back(t.toStdString());
-  }
-  return out;
 }
 
 }  // namespace
@@ -97,9 +48,7 @@ SweepView::SweepView(QWidget* parent) : QWidget(parent) {
     refreshPlots();
     refreshBest();
   });
-  buildForm();
-  choice_.metrics = {"vsdns"};
-  showChoice();
+  buildView();
 }
 
 SweepView::~SweepView() {
@@ -110,51 +59,9 @@ SweepView::~SweepView() {
   runner_ = nullptr;
 }
 
-void SweepView::buildForm() {
-  header_ = new QLabel(this);
-  header_->setObjectName(QStringLiteral("sweepHeader"));
-  header_->setWordWrap(true);
-
-  parameters_ = new QTableWidget(0, 5, this);
-  parameters_->setObjectName(QStringLiteral("sweepParameters"));
-  parameters_->setHorizontalHeaderLabels(
-      {tr("Sweep"), tr("Unit"), tr("Range"), tr("Now"), tr("Values (a:step:b or v1,v2,…)")});
-  parameters_->verticalHeader()->hide();
-  parameters_->horizontalHeader()->setStretchLastSection(true);
-  parameters_->setSelectionMode(QAbstractItemView::NoSelection);
-  parameters_->setToolTip(
-      tr("Tick the parameters to sweep and give their values; the first ticked row is the "
-         "outermost loop"));
-  connect(parameters_, &QTableWidget::itemChanged, this, [this] {
-    if (!updating_) readForm();
-  });
-
-  ties_ = new QLineEdit(this);
-  ties_->setObjectName(QStringLiteral("sweepTies"));
-  ties_->setPlaceholderText(tr("e.g. p1=1-p4; several separated by ;"));
-  ties_->setToolTip(tr("Parameters set from others for every set: C, P, C-P, C+P or C*P"));
-  connect(ties_, &QLineEdit::editingFinished, this, [this] {
-    if (!updating_) readForm();
-  });
-
-  metrics_ = new QListWidget(this);
-  metrics_->setObjectName(QStringLiteral("sweepMetrics"));
-  metrics_->setMaximumHeight(120);
-  for (const std::string& m : allSweepMetrics()) {
-    auto* item = new QListWidgetItem(qs(m), metrics_);
-    item->setData(Qt::UserRole, qs(m));
-    item->setFlags(Qt::ItemIsUserCheckable | Qt::ItemIsEnabled);
-    item->setCheckState(Qt::Unchecked);
-  }
-  metrics_->setFlow(QListView::LeftToRight);
-  metrics_->setWrapping(true);
-  metrics_->setResizeMode(QListView::Adjust);
-  connect(metrics_, &QListWidget::itemChanged, this, [this] {
-    if (!updating_) readForm();
-  });
-
-  setCount_ = new QLabel(this);
-  setCount_->setObjectName(QStringLiteral("sweepSetCount"));
+void SweepView::buildView() {
+  form_ = new SweepForm(this);
+  connect(form_, &SweepForm::choiceEdited, this, &SweepView::choiceEdited);
   runButton_ = new QPushButton(tr("&Run Sweep"), this);
   runButton_->setObjectName(QStringLiteral("runSweep"));
   cancelButton_ = new QPushButton(tr("&Cancel"), this);
@@ -171,28 +78,15 @@ void SweepView::buildForm() {
   connect(runButton_, &QPushButton::clicked, this, [this] { run(); });
   connect(cancelButton_, &QPushButton::clicked, this, &SweepView::cancel);
 
-  auto* form = new QWidget(this);
-  auto* formLayout = new QVBoxLayout(form);
-  formLayout->setContentsMargins(0, 0, 0, 0);
-  formLayout->addWidget(header_);
-  formLayout->addWidget(new QLabel(tr("Parameters (declared by the model and the rule):"), form));
-  formLayout->addWidget(parameters_, 1);
-  auto* tieLabel = new QLabel(tr("&Ties:"), form);
-  tieLabel->setBuddy(ties_);
-  auto* tieRow = new QHBoxLayout;
-  tieRow->addWidget(tieLabel);
-  tieRow->addWidget(ties_, 1);
-  formLayout->addLayout(tieRow);
-  formLayout->addWidget(new QLabel(tr("Metrics:"), form));
-  formLayout->addWidget(metrics_);
-  auto* runRow = new QHBoxLayout;
-  runRow->addWidget(setCount_);
-  runRow->addStretch(1);
-  runRow->addWidget(runButton_);
-  runRow->addWidget(cancelButton_);
-  formLayout->addLayout(runRow);
-  formLayout->addWidget(progress_);
-  formLayout->addWidget(status_);
+  // The form, its set count beside the Run and Cancel buttons, the progress and the status.
+  form_->addToCountRow(runButton_);
+  form_->addToCountRow(cancelButton_);
+  auto* left = new QWidget(this);
+  auto* leftLayout = new QVBoxLayout(left);
+  leftLayout->setContentsMargins(0, 0, 0, 0);
+  leftLayout->addWidget(form_, 1);
+  leftLayout->addWidget(progress_);
+  leftLayout->addWidget(status_);
 
   model_ = new SweepResultsModel(this);
   table_ = new QTableView(this);
@@ -283,7 +177,7 @@ void SweepView::buildForm() {
   right->setStretchFactor(0, 2);
   right->setStretchFactor(1, 3);
   auto* split = new QSplitter(Qt::Horizontal, this);
-  split->addWidget(form);
+  split->addWidget(left);
   split->addWidget(right);
   split->setStretchFactor(0, 2);
   split->setStretchFactor(1, 3);
@@ -293,173 +187,26 @@ void SweepView::buildForm() {
 }
 
 void SweepView::setInputs(SweepInputs inputs) {
-  const bool specsChanged = inputs.settings.model != inputs_.settings.model ||
-                            inputs.settings.rule != inputs_.settings.rule ||
-                            parameters_->rowCount() == 0;
   inputs_ = std::move(inputs);
-  header_->setText(
-      tr("<b>%1 × %2</b>, pose %3, cell %4 m, log %5; %6 threads")
-          .arg(qs(inputs_.settings.model), qs(inputs_.settings.rule),
-               inputs_.settings.pose == PoseSource::Truth ? tr("truth") : tr("odometry"),
-               QString::number(inputs_.cellSize),
-               inputs_.logName.isEmpty() ? tr("(none)") : inputs_.logName.toHtmlEscaped())
-          .arg(threadCount()));
-  if (specsChanged) {
-    rebuildParameterRows();
-  } else {
-    // The base values shown follow the document's.
-    const QSignalBlocker block(parameters_);
-    for (int r = 0; r < parameters_->rowCount(); ++r) {
-      const std::string name =
-          parameters_->item(r, kSweepColumn)->data(Qt::UserRole).toString().toStdString();
-      if (inputs_.settings.parameters.has(name))
-        parameters_->item(r, kBaseColumn)
-            ->setText(qs(shortestText(inputs_.settings.parameters.get(name))));
-    }
-  }
-  // Metrics that need what the document lacks are shown but cannot be chosen.
-  const QSignalBlocker block(metrics_);
-  for (int i = 0; i < metrics_->count(); ++i) {
-    QListWidgetItem* item = metrics_->item(i);
-    const std::string m = item->data(Qt::UserRole).toString().toStdString();
-    QString why;
-    if (isReferenceMetric(m) && !inputs_.reference) why = tr("needs a reference map");
-    if (m == "two-run" && !inputs_.secondRun) why = tr("needs a second log of the same route");
-    item->setFlags(why.isEmpty() ? (Qt::ItemIsUserCheckable | Qt::ItemIsEnabled)
-                                 : Qt::ItemIsUserCheckable);
-    item->setToolTip(why);
-  }
-  updateSetCount();
+  form_->setInputs(inputs_);
   updateButtons();
 }
 
-void SweepView::rebuildParameterRows() {
-  updating_ = true;
-  const QSignalBlocker block(parameters_);
-  parameters_->setRowCount(0);
-  for (const ParameterSpec& spec : inputs_.settings.parameters.specs()) {
-    const int r = parameters_->rowCount();
-    parameters_->insertRow(r);
-    const QString label = spec.symbol.empty() || spec.symbol == spec.name
-                              ? qs(spec.name)
-                              : QStringLiteral("%1 (%2)").arg(qs(spec.symbol), qs(spec.name));
-    auto* check = new QTableWidgetItem(label);
-    check->setFlags(Qt::ItemIsUserCheckable | Qt::ItemIsEnabled);
-    check->setCheckState(Qt::Unchecked);
-    check->setData(Qt::UserRole, qs(spec.name));
-    check->setToolTip(qs(spec.description + (spec.source.empty() ? "" : " (" + spec.source + ")")));
-    auto fixed = [](const QString& text) {
-      auto* item = new QTableWidgetItem(text);
-      item->setFlags(Qt::ItemIsEnabled);
-      return item;
-    };
-    parameters_->setItem(r, kSweepColumn, check);
-    parameters_->setItem(r, kUnitColumn, fixed(qs(spec.unit)));
-    parameters_->setItem(r, kRangeColumn,
-                         fixed(QStringLiteral("%1 … %2").arg(qs(shortestText(spec.min)),
-                                                             qs(shortestText(spec.max)))));
-    parameters_->setItem(r, kBaseColumn,
-                         fixed(qs(shortestText(inputs_.settings.parameters.get(spec.name)))));
-    auto* values = new QTableWidgetItem(qs(suggestedValues(spec)));
-    values->setFlags(Qt::ItemIsEnabled | Qt::ItemIsEditable);
-    parameters_->setItem(r, kValuesColumn, values);
-  }
-  parameters_->resizeColumnsToContents();
-  updating_ = false;
-  showChoice();
-}
-
 void SweepView::setChoice(const SweepChoice& choice) {
-  if (choice == choice_) return;
-  choice_ = choice;
-  showChoice();
+  form_->setChoice(choice);
 }
 
-void SweepView::showChoice() {
-  updating_ = true;
-  {
-    const QSignalBlocker block(parameters_);
-    for (int r = 0; r < parameters_->rowCount(); ++r) {
-      const std::string name =
-          parameters_->item(r, kSweepColumn)->data(Qt::UserRole).toString().toStdString();
-      bool swept = false;
-      for (const std::string& axis : choice_.axes) {
-        const auto [p, values] = splitAxis(axis);
-        if (p != name) continue;
-        swept = true;
-        parameters_->item(r, kValuesColumn)->setText(qs(values));
-      }
-      parameters_->item(r, kSweepColumn)->setCheckState(swept ? Qt::Checked : Qt::Unchecked);
-    }
-  }
-  QStringList ties;
-  for (const std::string& t : choice_.ties) ties << qs(t);
-  ties_->setText(ties.join(QStringLiteral("; ")));
-  {
-    const QSignalBlocker block(metrics_);
-    for (int i = 0; i < metrics_->count(); ++i) {
-      QListWidgetItem* item = metrics_->item(i);
-      const std::string m = item->data(Qt::UserRole).toString().toStdString();
-      const bool on =
-          std::find(choice_.metrics.begin(), choice_.metrics.end(), m) != choice_.metrics.end();
-      item->setCheckState(on ? Qt::Checked : Qt::Unchecked);
-    }
-  }
-  updating_ = false;
-  updateSetCount();
-}
-
-void SweepView::readForm() {
-  SweepChoice c;
-  std::set<std::string> here;
-  for (int r = 0; r < parameters_->rowCount(); ++r) {
-    const std::string name =
-        parameters_->item(r, kSweepColumn)->data(Qt::UserRole).toString().toStdString();
-    here.insert(name);
-    if (parameters_->item(r, kSweepColumn)->checkState() == Qt::Checked)
-      c.axes.push_back(name + "=" +
-                       parameters_->item(r, kValuesColumn)->text().trimmed().toStdString());
-  }
-  // Axes of parameters another model declares stay in the choice (for when it comes back).
-  for (const std::string& axis : choice_.axes)
-    if (!here.count(splitAxis(axis).first)) c.axes.push_back(axis);
-  c.ties = splitTies(ties_->text());
-  for (int i = 0; i < metrics_->count(); ++i)
-    if (metrics_->item(i)->checkState() == Qt::Checked)
-      c.metrics.push_back(metrics_->item(i)->data(Qt::UserRole).toString().toStdString());
-  updateSetCount();
-  if (c == choice_) return;
-  choice_ = std::move(c);
-  updateSetCount();
-  emit choiceEdited(choice_);
-}
-
-void SweepView::updateSetCount() {
-  const ParameterSet& base = inputs_.settings.parameters;
-  try {
-    std::size_t n = 1;
-    for (const std::string& axis : choice_.axes) {
-      if (!base.has(splitAxis(axis).first)) continue;
-      n *= parseSweepAxis(axis, base).values.size();
-      if (n > kMaxViewSets) break;
-    }
-    for (const std::string& t : choice_.ties) parseSweepTie(t, base);
-    setCount_->setText(n > kMaxViewSets ? tr("more than %1 sets").arg(kMaxViewSets) : setsText(n));
-    setCount_->setStyleSheet(n > kMaxViewSets ? QStringLiteral("color: #b00020") : QString());
-    setCount_->setToolTip({});
-  } catch (const std::exception& e) {
-    setCount_->setText(tr("cannot sweep"));
-    setCount_->setStyleSheet(QStringLiteral("color: #b00020"));
-    setCount_->setToolTip(QString::fromUtf8(e.what()));
-  }
+SweepChoice SweepView::choice() const {
+  return form_->choice();
 }
 
 std::shared_ptr<SweepJob> SweepView::makeJob() const {
   if (!inputs_.run) throw std::invalid_argument(tr("Open a log first.").toStdString());
   const ParameterSet& base = inputs_.settings.parameters;
+  const SweepChoice choice = form_->choice();
   auto job = std::make_shared<SweepJob>();
   job->run = inputs_.run;
-  job->metrics = parseSweepMetrics(choice_.metrics);
+  job->metrics = parseSweepMetrics(choice.metrics);
   if (job->metrics.empty())
     throw std::invalid_argument(tr("Choose at least one metric.").toStdString());
   const SetMeasures measures = measuresOf(job->metrics);
@@ -469,11 +216,11 @@ std::shared_ptr<SweepJob> SweepView::makeJob() const {
     job->reference = inputs_.reference;
   }
   std::vector<SweepAxis> axes;
-  for (const std::string& axis : choice_.axes)
+  for (const std::string& axis : choice.axes)
     if (base.has(splitAxis(axis).first)) axes.push_back(parseSweepAxis(axis, base));
   if (axes.empty()) throw std::invalid_argument(tr("Tick a parameter to sweep.").toStdString());
   std::vector<SweepTie> ties;
-  for (const std::string& t : choice_.ties) ties.push_back(parseSweepTie(t, base));
+  for (const std::string& t : choice.ties) ties.push_back(parseSweepTie(t, base));
   std::size_t n = 1;
   for (const SweepAxis& a : axes) {
     n *= a.values.size();
@@ -515,14 +262,15 @@ bool SweepView::run() {
     return false;
   }
   job_ = job;
+  const SweepChoice choice = form_->choice();
   sweptParameters_.clear();
   shownParameters_.clear();
-  for (const std::string& axis : choice_.axes) {
+  for (const std::string& axis : choice.axes) {
     const std::string p = splitAxis(axis).first;
     if (inputs_.settings.parameters.has(p)) sweptParameters_.push_back(p);
   }
   shownParameters_ = sweptParameters_;
-  for (const std::string& t : choice_.ties)
+  for (const std::string& t : choice.ties)
     shownParameters_.push_back(parseSweepTie(t, inputs_.settings.parameters).parameter);
   model_->reset(job->sets, shownParameters_, metricColumns(job->metrics));
   {

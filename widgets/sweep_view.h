@@ -3,11 +3,12 @@
 // The sweep view (docs/user-guide.md, "Sweeping parameters"): the app's face of `sonargrid-cli
 // sweep` (docs/sweeps.md), with the same grammar and the same core code. The user picks the
 // parameters to sweep from the model's and rule's declared specs (name, symbol, unit, range) with
-// their values ("a:step:b" or "v1,v2,..."), ties ("p1=1-p4") and metrics; the core builds the sets
-// (sweepSets) and evaluates them (evaluateSets) on worker threads (SweepRunner) while the view
-// shows progress, a table of every set, the metric against each parameter and its histogram
-// (paper 002 Fig. 7). The best set by paper 002's rules (optimal_sets.h) or by a metric's best
-// value is applied, or rows are pinned, through signals the window turns into Document edits.
+// their values ("a:step:b" or "v1,v2,..."), ties ("p1=1-p4") and metrics in its form
+// (sweep_form.h); the core builds the sets (sweepSets) and evaluates them (evaluateSets) on worker
+// threads (SweepRunner) while the view shows progress, a table of every set, the metric against
+// each parameter and its histogram (paper 002 Fig. 7). The best set by paper 002's rules
+// (optimal_sets.h) or by a metric's best value is applied, or rows are pinned, through signals the
+// window turns into Document edits.
 
 #include <QWidget>
 #include <memory>
@@ -15,19 +16,14 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/dataset.h"
-#include "sonargrid/mapper.h"
-#include "sonargrid/reference/reference_map.h"
 #include "sonargrid/sweep/optimal_sets.h"
+#include "sweep_form.h"  // SweepInputs, SweepChoice
 
 class QComboBox;
 class QLabel;
-class QLineEdit;
-class QListWidget;
 class QProgressBar;
 class QPushButton;
 class QTableView;
-class QTableWidget;
 class QTimer;
 
 namespace sg::ui {
@@ -37,32 +33,12 @@ class SweepResultsModel;
 class SweepRunner;
 struct SweepJob;
 
-// What a sweep maps: the document's logs, reference, mapper settings (model, rule, pose and the
-// base values of every parameter) and cell size.
-struct SweepInputs {
-  std::shared_ptr<const Dataset> run;
-  std::shared_ptr<const Dataset> secondRun;
-  std::shared_ptr<const ReferenceMap> reference;
-  MapperSettings settings;
-  double cellSize = 0.05;
-  QString logName;
-};
-
-// What the user chose, as `sonargrid-cli sweep` flags: --grid texts ("p2=0.05:0.05:0.2"), --tie
-// texts ("p1=1-p4") and --metric names. Saved with the project.
-struct SweepChoice {
-  std::vector<std::string> axes;
-  std::vector<std::string> ties;
-  std::vector<std::string> metrics;
-  bool operator==(const SweepChoice&) const = default;
-};
-
 class SweepView : public QWidget {
   Q_OBJECT
 
  public:
   // More sets than this are refused here (the CLI's --shard spreads bigger sweeps over machines).
-  static constexpr std::size_t kMaxViewSets = 100000;
+  static constexpr std::size_t kMaxViewSets = SweepForm::kMaxSets;
 
   enum class BestRule { LowestBin, Minimum, NearestMean, BestValue };
 
@@ -72,7 +48,7 @@ class SweepView : public QWidget {
   void setInputs(SweepInputs inputs);
   // Shows `choice` without emitting choiceEdited.
   void setChoice(const SweepChoice& choice);
-  SweepChoice choice() const { return choice_; }
+  SweepChoice choice() const;
 
   // Starts the sweep of the current choice; false (the reason in statusText()) when the choice
   // cannot be swept or a sweep is running.
@@ -109,12 +85,8 @@ class SweepView : public QWidget {
   void closeEvent(QCloseEvent* event) override;
 
  private:
-  void buildForm();
-  void rebuildParameterRows();
-  void showChoice();
-  void readForm();  // the form into choice_, then choiceEdited
-  void updateSetCount();
-  // The sweep of choice_ over inputs_; throws SweepSpecError / std::exception with the reason.
+  void buildView();
+  // The sweep of choice() over inputs_; throws SweepSpecError / std::exception with the reason.
   std::shared_ptr<SweepJob> makeJob() const;
   void onSetFinished(std::size_t index, const std::vector<std::optional<double>>& values);
   void onFinished(bool completed, const QString& error);
@@ -128,18 +100,13 @@ class SweepView : public QWidget {
   void updateButtons();
 
   SweepInputs inputs_;
-  SweepChoice choice_;
   std::shared_ptr<const SweepJob> job_;
   std::vector<std::string> shownParameters_;  // swept, then tied, of job_
   std::vector<std::string> sweptParameters_;
   bool updating_ = false;
   bool running_ = false;
 
-  QLabel* header_ = nullptr;
-  QTableWidget* parameters_ = nullptr;
-  QLineEdit* ties_ = nullptr;
-  QListWidget* metrics_ = nullptr;
-  QLabel* setCount_ = nullptr;
+  SweepForm* form_ = nullptr;
   QPushButton* runButton_ = nullptr;
   QPushButton* cancelButton_ = nullptr;
   QProgressBar* progress_ = nullptr;

@@ -241,8 +241,10 @@ int runCompare(Arguments& args) {
                            (f.unit[0] != '\0' ? std::string(" (") + (f.unit + 1) + ")" : ""));
   }
   std::string csv = "config,params,cells_scored";
-  for (std::size_t k : shown)
-    csv += std::string(",") + metricFormats()[k].key + "_mean," + metricFormats()[k].key + "_sd";
+  for (std::size_t k : shown) {
+    const std::string key = metricJsonKey(metricFormats()[k].metric);
+    csv += "," + key + "_mean," + key + "_sd";
+  }
   csv += '\n';
   Json jsonRows = Json::array();
   for (const Row& r : rows) {
@@ -259,7 +261,7 @@ int runCompare(Arguments& args) {
       if (m.sd) cell += " ± " + reproduce::fixed(m.sd, f.precision);
       line.push_back(cell);
       csv += "," + reproduce::exact(m.mean) + "," + reproduce::exact(m.sd);
-      metrics[f.key] =
+      metrics[metricJsonKey(f.metric)] =
           Json{{"mean", reproduce::orNull(m.mean)}, {"sd", reproduce::orNull(m.sd)}, {"n", m.n}};
     }
     csv += '\n';

@@ -107,7 +107,7 @@ int runScore(Arguments& args) {
     for (const MetricFormat& k : metricFormats()) {
       if (score.computed.count(k.metric) == 0) continue;  // not asked for: omitted
       const std::optional<double> v = score.value(k.metric);
-      out[k.key] =
+      out[metricJsonKey(k.metric)] =
           v ? nlohmann::ordered_json(*v) : nlohmann::ordered_json(nullptr);  // undefined: null
     }
     out["cells_evaluated"] = score.cellsEvaluated;

@@ -33,20 +33,20 @@ ScoreOptions parseScoreOptions(Arguments& args) {
 
 const std::vector<MetricFormat>& metricFormats() {
   static const std::vector<MetricFormat> formats = {
-      {Metric::Iop, "iop_mm", "IOP", " mm", 1},
-      {Metric::Correlation, "correlation_pct", "correlation", " %", 2},
-      {Metric::MapScore, "map_score_pct", "map score", " %", 2},
-      {Metric::MapScoreOccupied, "map_score_occupied_pct", "map score, occupied cells", " %", 2},
-      {Metric::Match, "match_bits", "match (Moravec-Blackwell)", " bits", 1},
-      {Metric::PathFalsePositive, "path_false_positive_pct", "path false positives", " %", 1},
-      {Metric::PathFalseNegative, "path_false_negative_pct", "path false negatives", " %", 1},
-      {Metric::CrossEntropy, "cross_entropy", "cross-entropy", " bits/cell", 4},
-      {Metric::Brier, "brier", "Brier score", "", 4},
-      {Metric::Auc, "auc", "ROC AUC", "", 4},
-      {Metric::Precision, "precision", "precision (occupied)", "", 4},
-      {Metric::Recall, "recall", "recall (occupied)", "", 4},
-      {Metric::F1, "f1", "F1 (occupied)", "", 4},
-      {Metric::Iou, "iou", "IoU (occupied)", "", 4},
+      {Metric::Iop, "IOP", " mm", 1},
+      {Metric::Correlation, "correlation", " %", 2},
+      {Metric::MapScore, "map score", " %", 2},
+      {Metric::MapScoreOccupied, "map score, occupied cells", " %", 2},
+      {Metric::Match, "match (Moravec-Blackwell)", " bits", 1},
+      {Metric::PathFalsePositive, "path false positives", " %", 1},
+      {Metric::PathFalseNegative, "path false negatives", " %", 1},
+      {Metric::CrossEntropy, "cross-entropy", " bits/cell", 4},
+      {Metric::Brier, "Brier score", "", 4},
+      {Metric::Auc, "ROC AUC", "", 4},
+      {Metric::Precision, "precision (occupied)", "", 4},
+      {Metric::Recall, "recall (occupied)", "", 4},
+      {Metric::F1, "F1 (occupied)", "", 4},
+      {Metric::Iou, "IoU (occupied)", "", 4},
   };
   return formats;
 }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
 // The scoring flags `score` and `compare` share (docs/cli.md): --metrics, --pairs, --seed,
-// --iop-weight, --filled-threshold; and the JSON keys and text labels of the metrics.
+// --iop-weight, --filled-threshold; and the text labels of the metrics.
 
 #include <optional>
 #include <vector>
@@ -14,11 +14,10 @@ namespace sg::cli {
 // Consumes the scoring flags; UsageError naming the flag for a bad value.
 ScoreOptions parseScoreOptions(Arguments& args);
 
-// One metric as `score` reports it: its JSON key (the contract), and its text label, unit and
-// decimals.
+// One metric as `score` prints it: its text label, unit and decimals. Its JSON key (the
+// contract) is metricJsonKey(metric).
 struct MetricFormat {
   Metric metric;
-  const char* key;    // "iop_mm", "correlation_pct", ...
   const char* label;  // "IOP", "correlation", ...
   const char* unit;   // " mm", " %", ""
   int precision;

@@ -249,7 +249,8 @@ int main(int argc, char** argv) {
   // Settings on the command line are edits of the document that starts from the last session's
   // choices (so a --set that changes something leaves unsaved changes, autosaved as any edit).
   window.setCellSize(cell);
-  window.setMapperSettings(settings);
+  // The rule changes only when --rule names it: the panel notes no rule change.
+  window.setMapperSettings(settings, /*ruleNamed=*/true);
   // A reference given with a log is drawn for that log: the new log does not close it.
   if (parser.isSet("reference") && !window.openReference(parser.value("reference"), screenshot))
     if (screenshot) return 2;

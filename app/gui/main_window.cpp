@@ -14,6 +14,7 @@
 #include <QMessageBox>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QScopedValueRollback>
 #include <QSettings>
 #include <QStatusBar>
 #include <QTimer>
@@ -201,8 +202,9 @@ const sg::MapperSettings& MainWindow::mapperSettings() const {
   return document_->mapperSettings();
 }
 
-void MainWindow::setMapperSettings(const MapperSettings& settings) {
-  document_->setMapperSettings(settings);
+void MainWindow::setMapperSettings(const MapperSettings& settings, bool ruleNamed) {
+  const QScopedValueRollback<bool> named(ruleNamed_, ruleNamed);
+  document_->setMapperSettings(settings);  // shows them (showSettings) before it returns
 }
 
 void MainWindow::setCellSize(double metres) {
@@ -272,7 +274,7 @@ void MainWindow::showSettings() {
                      settings.pose != menuSettings_.pose))
     rebuildMappingMenu();
   view_->setNativeName(QString::fromStdString(updateRuleInfo(settings.rule).nativeName));
-  panel_->setSettings(settings);
+  panel_->setSettings(settings, ruleNamed_);
   // The beam view's picture costs 5-10 ms of GUI thread, and on two cores every ms of it is taken
   // from the re-map: drawn once the grid shows the new map, or kBeamIntervalMs after the change
   // (a long re-map of a big log), but not more often than every kBeamIntervalMs, so a dragged

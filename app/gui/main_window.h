@@ -82,8 +82,9 @@ class MainWindow : public QMainWindow {
 
   // Model, rule, parameters and pose, as one undoable edit of the document: re-maps the log (not
   // when they equal the settings of the current map), and shows them in the menus, the title, the
-  // parameter panel and the beam view.
-  void setMapperSettings(const sg::MapperSettings& settings);
+  // parameter panel and the beam view. `ruleNamed`: the user named the rule (the command line),
+  // so the parameter panel does not say that the rule changed with the model.
+  void setMapperSettings(const sg::MapperSettings& settings, bool ruleNamed = false);
   const sg::MapperSettings& mapperSettings() const;
   // Cell size in metres, clamped to [0.005, 1]; undoable; re-maps.
   void setCellSize(double metres);
@@ -243,7 +244,8 @@ class MainWindow : public QMainWindow {
   };
   std::optional<PendingProject> pendingProject_;
   std::optional<ui::ViewTransform> pendingView_;  // a project's view, shown with its first map
-  bool adopting_ = false;  // adoptLog is changing the document: it starts the re-map itself
+  bool adopting_ = false;   // adoptLog is changing the document: it starts the re-map itself
+  bool ruleNamed_ = false;  // setMapperSettings(…, true) is changing the document
 
   sg::MapperSettings menuSettings_;    // what the Mapping menu was last built for
   sg::MapperSettings mappedSettings_;  // what the remap controller was last given

@@ -17,49 +17,23 @@
 #include <optional>
 #include <vector>
 
+#include "cli_run.h"
+
 namespace {
 
-const QString kCli = QStringLiteral(SONARGRID_CLI);
 const QString kRoom = QStringLiteral(SONARGRID_DATASETS "/room/room.sglog");
 const QString kRoomWorld = QStringLiteral(SONARGRID_DATASETS "/room/room.json");
 const QString kRun1 = QStringLiteral(SONARGRID_DATASETS "/arafat-room/run-1.sglog");
 const QString kRun2 = QStringLiteral(SONARGRID_DATASETS "/arafat-room/run-2.sglog");
 const QString kArafatWorld = QStringLiteral(SONARGRID_DATASETS "/arafat-room/world.json");
 
-struct Run {
-  bool finished = false;
-  QProcess::ExitStatus status = QProcess::CrashExit;
-  int code = -1;
-  QByteArray out;
-  QByteArray err;
-};
+using cli_test::describe;
+using cli_test::kCli;
+using cli_test::Run;
 
+// A 12-set study on a loaded machine: up to 240 s (twice cli_run.h's default).
 Run runCli(const QStringList& args) {
-  QProcess p;
-  p.start(kCli, args);
-  Run r;
-  if (!p.waitForStarted(10000)) {
-    r.err = "did not start: " + p.errorString().toUtf8();
-    return r;
-  }
-  r.finished = p.waitForFinished(240000);
-  if (!r.finished) {
-    p.kill();
-    p.waitForFinished(5000);
-    r.err = "timed out after 240 s";
-    return r;
-  }
-  r.status = p.exitStatus();
-  r.code = p.exitCode();
-  r.out = p.readAllStandardOutput();
-  r.err = p.readAllStandardError();
-  return r;
-}
-
-QByteArray describe(const QStringList& args, const Run& r) {
-  return "sonargrid-cli " + args.join(' ').toUtf8() + "\n  exit " + QByteArray::number(r.code) +
-         (r.status == QProcess::CrashExit ? " (crashed)" : "") + "\n  stdout: " + r.out.left(800) +
-         "\n  stderr: " + r.err.left(800);
+  return cli_test::runProgram(kCli, args, {}, {}, 240000);
 }
 
 QByteArray readFile(const QString& path) {

@@ -2,8 +2,9 @@
 // The main window's parameter panel and beam-model view, offscreen: a key on a focused slider
 // re-maps the log and the view shows exactly the map Mapper::mapDataset builds with the new value;
 // a burst of slider moves delivers only the newest map; settings set from outside the panel (the
-// Mapping menu, the command line) show in the panel without echoing back or mapping twice; the beam
-// view shows a reading of the current scan with the panel's model.
+// Mapping menu, the command line) show in the panel without echoing back or mapping twice, and a
+// rule the command line names is not noted as a change; the beam view shows a reading of the
+// current scan with the panel's model.
 
 #include <QComboBox>
 #include <QLabel>
@@ -11,9 +12,11 @@
 #include <QSlider>
 #include <QStandardPaths>
 #include <QTemporaryDir>
+#include <QUndoStack>
 #include <QtTest>
 
 #include "beam_model_view.h"
+#include "document.h"
 #include "grid_view.h"
 #include "main_window.h"
 #include "parameter_panel.h"
@@ -206,6 +209,34 @@ class TestMainWindowPanel : public QObject {
     QCOMPARE(window.remapController()->latestGeneration(), generation + 1);
     QVERIFY(window.waitForMap(60000));
     QVERIFY(window.gridView()->map()->level == batchMap(data_, parameterized).level);
+  }
+
+  void commandLineRuleIsNotNoted() {
+    // The last session mapped with Konolige × log update; `sonargrid LOG --model parameterized
+    // --rule bayes` names both (app/gui/main.cpp gives them with ruleNamed): the panel says
+    // nothing of a rule change. Undo brings back a rule the user did not name: that is said.
+    QSettings().setValue("mapping/model", "konolige");
+    QSettings().setValue("mapping/rule", "log");
+    app::MainWindow window;
+    QCOMPARE(window.mapperSettings().rule, std::string("log"));
+    MapperSettings named;
+    named.model = "parameterized";
+    named.rule = "bayes";
+    named.parameters = defaultParameters(named.model, named.rule);
+    window.setMapperSettings(named, /*ruleNamed=*/true);
+    QCOMPARE(window.parameterPanel()->settings().rule, std::string("bayes"));
+    QCOMPARE(window.parameterPanel()->statusText(), QString());
+    window.document()->undoStack()->undo();
+    QCOMPARE(window.parameterPanel()->settings().rule, std::string("log"));
+    // "Rule changed from <title> to <title>" (ParameterPanel::ruleChangeNote; rules/bayes.cpp,
+    // rules/log_rule.cpp).
+    const QString note = window.parameterPanel()->statusText();
+    QVERIFY2(note.startsWith(QStringLiteral("Rule changed from ") +
+                             QString::fromStdString(updateRuleInfo("bayes").title) +
+                             QStringLiteral(" to ") +
+                             QString::fromStdString(updateRuleInfo("log").title)),
+             qPrintable(note));
+    QSettings().remove("mapping");
   }
 
   void beamViewShowsAReadingOfTheCurrentScan() {

@@ -327,8 +327,8 @@ class TestMetricsPanel : public QObject {
     a.observed = {1, 0};
     b.observed.assign(8, 1);
     const std::vector<const OccupancyMap*> maps{&a, &b};
-    QCOMPARE(commonObservedMask(maps, 1), (std::vector<std::uint8_t>{1, 1, 0, 0, 1, 1, 0, 0}));
-    QCOMPARE(commonObservedMask(maps, 0), (std::vector<std::uint8_t>{1, 0}));
+    QCOMPARE(commonObservedCells(maps, 1), (std::vector<std::uint8_t>{1, 1, 0, 0, 1, 1, 0, 0}));
+    QCOMPARE(commonObservedCells(maps, 0), (std::vector<std::uint8_t>{1, 0}));
   }
 };
 

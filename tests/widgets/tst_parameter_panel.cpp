@@ -77,6 +77,8 @@ class TstParameterPanel : public QObject {
   void modelChangeMovesAnIncompatibleRule();
   void modelChangePrefersThePapersRule_data();
   void modelChangePrefersThePapersRule();
+  void ruleNoteOnlyForARuleThatCameWithTheModel_data();
+  void ruleNoteOnlyForARuleThatCameWithTheModel();
   void slidersKeepTheirWidth_data();
   void slidersKeepTheirWidth();
   void outOfRangeIsSaid();
@@ -240,6 +242,69 @@ void TstParameterPanel::modelChangePrefersThePapersRule() {
   QTest::keyClick(slider, slider->value() < slider->maximum() ? Qt::Key_Right : Qt::Key_Left);
   QCOMPARE(spy.count(), 2);
   QCOMPARE(panel.statusText(), QString());
+}
+
+void TstParameterPanel::ruleNoteOnlyForARuleThatCameWithTheModel_data() {
+  QTest::addColumn<QString>("fromModel");
+  QTest::addColumn<QString>("fromRule");
+  QTest::addColumn<QString>("model");
+  QTest::addColumn<QString>("rule");
+  QTest::addColumn<bool>("ruleNamed");
+  QTest::addColumn<bool>("noted");
+  // The window shows the last session's settings first, then what the command line names
+  // (`sonargrid LOG --model parameterized --rule bayes`, app/gui/main.cpp): the user named the
+  // rule, so nothing is said of a rule change. The Mapping menu's model (with its paper's rule)
+  // and undo bring a rule the user did not name: the note says so.
+  QTest::newRow("command line, log → bayes") << "konolige"
+                                             << "log"
+                                             << "parameterized"
+                                             << "bayes" << true << false;
+  QTest::newRow("command line, himm → bayes") << "himm"
+                                              << "himm"
+                                              << "parameterized"
+                                              << "bayes" << true << false;
+  QTest::newRow("Mapping menu, log → bayes-recursive") << "konolige"
+                                                       << "log"
+                                                       << "parameterized"
+                                                       << "bayes-recursive" << false << true;
+  QTest::newRow("undo, bayes → log") << "parameterized"
+                                     << "bayes"
+                                     << "konolige"
+                                     << "log" << false << true;
+}
+
+void TstParameterPanel::ruleNoteOnlyForARuleThatCameWithTheModel() {
+  QFETCH(QString, fromModel);
+  QFETCH(QString, fromRule);
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  QFETCH(bool, ruleNamed);
+  QFETCH(bool, noted);
+  auto settings = [](const QString& m, const QString& r) {
+    MapperSettings s;
+    s.model = m.toStdString();
+    s.rule = r.toStdString();
+    s.parameters = defaultParameters(s.model, s.rule);
+    return s;
+  };
+  ParameterPanel panel;
+  panel.setSettings(settings(fromModel, fromRule));  // the window's first: never noted
+  QCOMPARE(panel.statusText(), QString());
+  QSignalSpy spy(&panel, &ParameterPanel::settingsChanged);
+  panel.setSettings(settings(model, rule), ruleNamed);
+  QCOMPARE(spy.count(), 0);
+  QCOMPARE(panel.settings().model, model.toStdString());
+  QCOMPARE(panel.settings().rule, rule.toStdString());
+  const QString note = panel.statusText();
+  QVERIFY2(note.isEmpty() != noted, qPrintable(note));
+  if (noted) {
+    // "Rule changed from <old title> to <new title>…" (ParameterPanel::ruleChangeNote).
+    QVERIFY2(note.startsWith(QStringLiteral("Rule changed from ") +
+                             QString::fromStdString(updateRuleInfo(fromRule.toStdString()).title) +
+                             QStringLiteral(" to ") +
+                             QString::fromStdString(updateRuleInfo(rule.toStdString()).title)),
+             qPrintable(note));
+  }
 }
 
 void TstParameterPanel::slidersKeepTheirWidth_data() {

@@ -11,21 +11,28 @@
 namespace sg {
 namespace {
 
-constexpr std::array<std::pair<Metric, const char*>, 14> kNames{{
-    {Metric::Iop, "iop"},
-    {Metric::Correlation, "correlation"},
-    {Metric::MapScore, "map_score"},
-    {Metric::MapScoreOccupied, "map_score_occupied"},
-    {Metric::Match, "match"},
-    {Metric::PathFalsePositive, "path_false_positive"},
-    {Metric::PathFalseNegative, "path_false_negative"},
-    {Metric::CrossEntropy, "cross_entropy"},
-    {Metric::Brier, "brier"},
-    {Metric::Auc, "auc"},
-    {Metric::Precision, "precision"},
-    {Metric::Recall, "recall"},
-    {Metric::F1, "f1"},
-    {Metric::Iou, "iou"},
+// Each metric's name (--metrics, metricName) and its JSON key (metricJsonKey): the keys of
+// `sonargrid-cli score --json` and of the GUI's metrics JSON, a contract (docs/cli.md).
+struct MetricNames {
+  Metric metric;
+  const char* name;
+  const char* jsonKey;
+};
+constexpr std::array<MetricNames, 14> kNames{{
+    {Metric::Iop, "iop", "iop_mm"},
+    {Metric::Correlation, "correlation", "correlation_pct"},
+    {Metric::MapScore, "map_score", "map_score_pct"},
+    {Metric::MapScoreOccupied, "map_score_occupied", "map_score_occupied_pct"},
+    {Metric::Match, "match", "match_bits"},
+    {Metric::PathFalsePositive, "path_false_positive", "path_false_positive_pct"},
+    {Metric::PathFalseNegative, "path_false_negative", "path_false_negative_pct"},
+    {Metric::CrossEntropy, "cross_entropy", "cross_entropy"},
+    {Metric::Brier, "brier", "brier"},
+    {Metric::Auc, "auc", "auc"},
+    {Metric::Precision, "precision", "precision"},
+    {Metric::Recall, "recall", "recall"},
+    {Metric::F1, "f1", "f1"},
+    {Metric::Iou, "iou", "iou"},
 }};
 
 bool wants(const std::set<Metric>& s, std::initializer_list<Metric> any) {
@@ -40,15 +47,22 @@ bool wants(const std::set<Metric>& s, std::initializer_list<Metric> any) {
 const std::vector<Metric>& allMetrics() {
   static const std::vector<Metric> all = [] {
     std::vector<Metric> v;
-    for (const auto& [m, name] : kNames) v.push_back(m);
+    for (const MetricNames& n : kNames) v.push_back(n.metric);
     return v;
   }();
   return all;
 }
 
 const char* metricName(Metric m) {
-  for (const auto& [metric, name] : kNames) {
-    if (metric == m) return name;
+  for (const MetricNames& n : kNames) {
+    if (n.metric == m) return n.name;
+  }
+  return "?";
+}
+
+const char* metricJsonKey(Metric m) {
+  for (const MetricNames& n : kNames) {
+    if (n.metric == m) return n.jsonKey;
   }
   return "?";
 }
@@ -66,15 +80,15 @@ std::set<Metric> parseMetricList(const std::string& list) {
       out.insert(Metric::PathFalseNegative);
       known = true;
     }
-    for (const auto& [m, n] : kNames) {
-      if (name == n) {
-        out.insert(m);
+    for (const MetricNames& n : kNames) {
+      if (name == n.name) {
+        out.insert(n.metric);
         known = true;
       }
     }
     if (!known) {
       std::string names = "path";
-      for (const auto& [m, n] : kNames) names += std::string(", ") + n;
+      for (const MetricNames& n : kNames) names += std::string(", ") + n.name;
       throw std::invalid_argument(
           (name.empty() ? std::string("an empty metric name") : "unknown metric '" + name + "'") +
           "; choose from " + names);
@@ -122,15 +136,38 @@ std::optional<double> ReferenceScore::value(Metric m) const {
 std::vector<std::uint8_t> commonObservedCells(const std::vector<const OccupancyMap*>& maps) {
   if (maps.empty()) throw std::invalid_argument("common cells: no map given");
   for (const OccupancyMap* m : maps) {
-    if (m == nullptr) throw std::invalid_argument("common cells: a null map");
-    if (!(m->spec == maps.front()->spec))
+    if (m != nullptr && !(m->spec == maps.front()->spec))
       throw std::invalid_argument("common cells: the maps are not on the same grid");
+  }
+  return commonObservedCells(maps, 0);
+}
+
+std::vector<std::uint8_t> commonObservedCells(const std::vector<const OccupancyMap*>& maps,
+                                              std::size_t on) {
+  if (maps.empty()) throw std::invalid_argument("common cells: no map given");
+  if (on >= maps.size()) throw std::invalid_argument("common cells: no map of that index");
+  for (const OccupancyMap* m : maps) {
+    if (m == nullptr) throw std::invalid_argument("common cells: a null map");
     if (m->observed.size() != m->spec.cellCount())
       throw std::invalid_argument("common cells: a map's observed layer does not match its grid");
   }
-  std::vector<std::uint8_t> common(maps.front()->observed.size(), 1);
-  for (const OccupancyMap* m : maps) {
-    for (std::size_t i = 0; i < common.size(); ++i) common[i] = common[i] && m->observed[i] ? 1 : 0;
+  const OccupancyMap& own = *maps[on];
+  const GridSpec& g = own.spec;
+  std::vector<std::uint8_t> common(own.observed.size(), 0);
+  for (std::size_t c = 0; c < common.size(); ++c) {
+    if (own.observed[c] == 0) continue;
+    const Position centre = g.cellCentre(g.fromLinear(c));
+    bool all = true;
+    for (std::size_t j = 0; j < maps.size() && all; ++j) {
+      const OccupancyMap& other = *maps[j];
+      if (other.spec == g) {
+        all = other.observed[c] != 0;  // the same cell
+      } else {
+        const CellIndex k = other.spec.worldToCell(centre);
+        all = other.spec.contains(k) && other.observed[other.spec.linear(k)] != 0;
+      }
+    }
+    common[c] = all ? 1 : 0;
   }
   return common;
 }

@@ -41,6 +41,9 @@ enum class Metric {
 
 const std::vector<Metric>& allMetrics();
 const char* metricName(Metric m);  // "iop", "correlation", ..., "path_false_positive"
+// The metric's key in `sonargrid-cli score --json` and the GUI's metrics JSON (docs/cli.md):
+// "iop_mm", "correlation_pct", ..., "iou". A contract: never rename one.
+const char* metricJsonKey(Metric m);
 // A comma-separated list of names; "path" stands for both path metrics. Throws
 // std::invalid_argument naming an unknown or empty name and listing the known ones.
 std::set<Metric> parseMetricList(const std::string& list);
@@ -66,6 +69,13 @@ struct ScoreOptions {
 // std::invalid_argument when `maps` is empty, holds a null pointer, or the maps are not all on the
 // same grid.
 std::vector<std::uint8_t> commonObservedCells(const std::vector<const OccupancyMap*>& maps);
+// The same on the grid of maps[on], for maps that may lie on different grids (e.g. of other cell
+// sizes): a cell counts when maps[on] observed it and every other map observed the cell that
+// holds its centre (one outside another map's grid does not count). Throws std::invalid_argument
+// when `maps` is empty, `on` is not an index of it, a map is null, or a map's observed layer does
+// not match its grid.
+std::vector<std::uint8_t> commonObservedCells(const std::vector<const OccupancyMap*>& maps,
+                                              std::size_t on);
 
 // `map` with every cell outside `mask` made never observed (p 0.5, level 8, not filled, no
 // evidence): what ScoreOptions::cellMask scores. An empty mask returns the map unchanged. Throws
