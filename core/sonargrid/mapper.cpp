@@ -207,8 +207,8 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
   // A model that does not rasterise by rows (HIMM's axis line, a few dozen cells a reading) maps
   // on one thread: split by stripes, every thread would trace every whole line and then sort its
   // cells into rows, which cost more than the second thread saved (himm × himm on the 100k
-  // workload: 56–64 ms at 2 threads against 37 ms at 1, idle machine); through the pipeline, the
-  // hand-over of each footprint costs more than tracing it.
+  // workload, same process, loaded machine: 142–196 ms at 2 threads against 29–49 ms at 1);
+  // through the pipeline, the hand-over of each footprint costs more than tracing it.
   const unsigned threads =
       n < kParallelMinimum || !model_->rasterisesRows() ? 1u : parallelThreads();
   if (threads == 1) {
