@@ -126,14 +126,7 @@ int runGoodnessStudy(Arguments& args) {
   for (const ReferenceMeasure& r : kReferenceMeasures) metricTexts.emplace_back(r.metric);
   SweepOptions o = parseSweepOptions(args, metricTexts);
 
-  std::vector<SweepAxis> axes;
-  for (const std::string& g : args.values("--grid")) {
-    try {
-      axes.push_back(parseSweepAxis(g, o.map.settings.parameters));
-    } catch (const SweepSpecError& e) {
-      throw UsageError(std::string("--grid ") + e.what());
-    }
-  }
+  const std::vector<std::string> gridTexts = args.values("--grid");
   const int bootstrap = args.integer("--bootstrap", 1000, 0, 1000000);
   std::uint64_t seed = 1;
   if (const auto s = args.value("--seed")) seed = parseSeed(*s);
@@ -142,13 +135,8 @@ int runGoodnessStudy(Arguments& args) {
   const bool progress = args.flag("--progress");
   args.finish();
 
-  std::vector<ParameterSet> sets;
-  try {
-    sets = sweepSets(o.map.settings.parameters, axes, o.ties);
-  } catch (const SweepSpecError& e) {
-    const std::string what = e.what();
-    throw UsageError(what.rfind("--tie", 0) == 0 ? what : "--grid: " + what);
-  }
+  const SweepSpace space = parseSweepSpace(gridTexts, o);
+  const std::vector<ParameterSet>& sets = space.sets;
   if (sets.size() < 3)
     throw UsageError("--grid gives " + std::to_string(sets.size()) +
                      (sets.size() == 1 ? " set" : " sets") +
@@ -177,12 +165,7 @@ int runGoodnessStudy(Arguments& args) {
     SweepHeader header;
     header.sets = sets.size();
     describeSweep(o, header);
-    for (const SweepAxis& a : axes) {
-      std::string list;
-      for (double v : a.values) list += (list.empty() ? "" : ",") + shortestText(v);
-      header.fields.emplace_back("grid", a.parameter + "=" + list);
-    }
-    for (const SweepTie& t : o.ties) header.fields.emplace_back("tie", t.text());
+    header.fields.insert(header.fields.end(), space.fields.begin(), space.fields.end());
     std::string bytes = header.text();
     for (std::size_t i = 0; i < sets.size(); ++i) {
       SweepCsvRow row;

@@ -60,14 +60,7 @@ int exitForSignal(int signal) {
 
 int runSweepCommand(Arguments& args) {
   SweepOptions o = parseSweepOptions(args);
-  std::vector<SweepAxis> axes;
-  for (const std::string& g : args.values("--grid")) {
-    try {
-      axes.push_back(parseSweepAxis(g, o.map.settings.parameters));
-    } catch (const SweepSpecError& e) {
-      throw UsageError(std::string("--grid ") + e.what());
-    }
-  }
+  const std::vector<std::string> gridTexts = args.values("--grid");
   std::pair<std::size_t, std::size_t> shard{0, 1};
   if (const auto s = args.value("--shard")) shard = parseShard(*s);
   const std::string csvPath = args.required("--csv");
@@ -75,25 +68,15 @@ int runSweepCommand(Arguments& args) {
   const bool progress = args.flag("--progress");
   args.finish();
 
-  std::vector<ParameterSet> sets;
-  try {
-    sets = sweepSets(o.map.settings.parameters, axes, o.ties);
-  } catch (const SweepSpecError& e) {
-    const std::string what = e.what();
-    throw UsageError(what.rfind("--tie", 0) == 0 ? what : "--grid: " + what);
-  }
+  const SweepSpace space = parseSweepSpace(gridTexts, o);
+  const std::vector<ParameterSet>& sets = space.sets;
 
   SweepHeader header;
   header.sets = sets.size();
   header.shardIndex = shard.first;
   header.shardCount = shard.second;
   describeSweep(o, header);
-  for (const SweepAxis& a : axes) {
-    std::string values;
-    for (double v : a.values) values += (values.empty() ? "" : ",") + shortestText(v);
-    header.fields.emplace_back("grid", a.parameter + "=" + values);
-  }
-  for (const SweepTie& t : o.ties) header.fields.emplace_back("tie", t.text());
+  header.fields.insert(header.fields.end(), space.fields.begin(), space.fields.end());
   const std::vector<std::size_t> indices = shardIndices(sets.size(), shard.first, shard.second);
 
   // Resume: a CSV of this very sweep and shard continues after its last whole row.

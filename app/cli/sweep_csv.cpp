@@ -33,17 +33,6 @@ std::string hex16(std::uint64_t v) {
   return buffer;
 }
 
-std::vector<std::string> splitCommas(const std::string& s) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  while (true) {
-    const auto at = s.find(',', start);
-    out.push_back(s.substr(start, at == std::string::npos ? std::string::npos : at - start));
-    if (at == std::string::npos) return out;
-    start = at + 1;
-  }
-}
-
 bool readDouble(const std::string& t, double& v) {
   const char* end = t.data() + t.size();
   const auto [ptr, ec] = std::from_chars(t.data(), end, v);

@@ -76,13 +76,9 @@ SweepData loadSweepData(const SweepOptions& o) {
     d.secondRun = loadLog(*o.secondLog, o.map.read);
     // One grid over both runs, as `goodness` makes it: both fitting grids are snapped to
     // multiples of the cell size, so the union is too and the runs' cells line up.
-    const GridSpec a = grid;
     const GridSpec b = fittingGridOf(*d.secondRun, o.map, *o.secondLog);
-    const Position lo = a.origin.cwiseMin(b.origin);
-    const Position hi = (a.origin + Position(a.widthMetres(), a.heightMetres()))
-                            .cwiseMax(b.origin + Position(b.widthMetres(), b.heightMetres()));
     try {
-      grid = GridSpec::covering(lo, hi, a.cellSize, 0.0);
+      grid = gridOverRuns(grid, b);
     } catch (const GridLimitError& e) {
       throw e.inFile(o.map.log + " and " + *o.secondLog);
     }
@@ -138,6 +134,16 @@ void rethrowEvaluationError(const SweepOptions& o) {
     throw InputError(o.map.log + ": " + e.what());
   } catch (const MetricsError& e) {
     throw InputError(o.referencePath.value_or("reference") + ": " + e.what());
+  }
+}
+
+SweepSpace parseSweepSpace(const std::vector<std::string>& gridTexts, const SweepOptions& o) {
+  try {
+    return sweepSpace(o.map.settings.parameters, gridTexts, o.ties);
+  } catch (const SweepSpaceError& e) {
+    const std::string what = e.what();
+    if (e.axis) throw UsageError("--grid " + what);
+    throw UsageError(what.rfind("--tie", 0) == 0 ? what : "--grid: " + what);
   }
 }
 

@@ -53,6 +53,10 @@ void describeSweep(const SweepOptions& o, SweepHeader& header);
 // "what: message" for an error while mapping or scoring: InputError naming the log or reference.
 [[noreturn]] void rethrowEvaluationError(const SweepOptions& o);
 
+// The --grid texts' axes and sets with the ties of `o` (sweepSpace()), UsageError naming the flag
+// at fault ("--grid ...", "--grid: ..." or "--tie ...").
+SweepSpace parseSweepSpace(const std::vector<std::string>& gridTexts, const SweepOptions& o);
+
 // Parses "--shard I/N" (0 ≤ I < N); UsageError naming the flag.
 std::pair<std::size_t, std::size_t> parseShard(const std::string& text);
 

@@ -435,24 +435,29 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
 }
 
 OccupancyMap Mapper::snapshot() const {
+  return occupancyMapOf(grid_, *rule_, settings_.model, settings_.rule);
+}
+
+OccupancyMap occupancyMapOf(const Grid& grid, const UpdateRule& rule, const std::string& model,
+                            const std::string& ruleName) {
   OccupancyMap m;
-  m.spec = grid_.spec();
-  m.model = settings_.model;
-  m.rule = settings_.rule;
-  const std::size_t n = grid_.cellCount();
+  m.spec = grid.spec();
+  m.model = model;
+  m.rule = ruleName;
+  const std::size_t n = grid.cellCount();
   m.probability.resize(n);
   m.native.resize(n);
   m.level.resize(n);
   m.filled.resize(n);
   m.observed.resize(n);
   m.evidence.resize(n);
-  grid_.copyObserved(0, n, m.observed.data());
+  grid.copyObserved(0, n, m.observed.data());
   // Split between threads for large grids: a 5 cm grid of a room and its ghosts is 200 000 cells
   // and this is on the path from a slider to the picture.
   const auto parts = static_cast<unsigned>(
       std::clamp<std::size_t>(n / kSnapshotCellsPerThread, 1, parallelThreads()));
-  runParallel(
-      parts, [&](unsigned k) { rule_->writeLayers(grid_, m, n * k / parts, n * (k + 1) / parts); });
+  runParallel(parts,
+              [&](unsigned k) { rule.writeLayers(grid, m, n * k / parts, n * (k + 1) / parts); });
   return m;
 }
 

@@ -57,6 +57,11 @@ struct MapperSettings {
 // model or rule name.
 ParameterSet defaultParameters(const std::string& model, const std::string& rule);
 
+// The map of `grid` as `rule` (the rule the grid was made for) reads it, named by the model and
+// rule: what Mapper::snapshot() gives (on the thread policy's threads for a large grid).
+OccupancyMap occupancyMapOf(const Grid& grid, const UpdateRule& rule, const std::string& model,
+                            const std::string& ruleName);
+
 class Mapper {
  public:
   // Throws MapperError for an unknown model or rule, an incompatible pair (with the reason), or an

@@ -1,13 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/sweep/parameter_sweep.h"
 
-#include <algorithm>
 #include <array>
-#include <mutex>
 
-#include "sonargrid/concurrency.h"
-#include "sonargrid/mapper.h"
-#include "sonargrid/metrics/vsdns.h"
+#include "sonargrid/sweep/set_evaluation.h"
 
 namespace sg {
 
@@ -40,77 +36,35 @@ std::vector<ParameterSet> paper002Table1Sets(const ParameterSet& base) {
   return sets;
 }
 
-namespace {
-
-// One map of one run with one set, scan by scan on the calling thread. Returns false if cancelled
-// or stopped (another thread failed).
-bool mapRun(Mapper& mapper, const Dataset& data, const std::atomic<bool>* cancel,
-            const std::atomic<bool>& stop) {
-  mapper.reset();
-  for (const Scan& scan : data.scans) {
-    if ((cancel && cancel->load(std::memory_order_relaxed)) || stop.load(std::memory_order_relaxed))
-      return false;
-    mapper.integrate(scan);
-  }
-  return true;
-}
-
-}  // namespace
-
 SweepOutcome runSweep(const Dataset& run, const Dataset* secondRun,
                       const std::vector<ParameterSet>& sets, const SweepSettings& settings,
                       const SweepProgress& progress, const std::atomic<bool>* cancel) {
-  for (const Dataset* d : {&run, secondRun}) {
-    if (d && settings.pose == PoseSource::Truth && !d->hasTruth())
-      throw MapperError("the log has no true pose for every scan; map with odometry (--pose odom)");
-  }
+  // The generic sweep's engine (set_evaluation.h), asked for paper 002's three goodness measures.
+  SetEvaluationInput in;
+  in.run = &run;
+  in.secondRun = secondRun;
+  in.settings = settings;
+  in.measures.vsdns = true;
+  in.measures.derivative = true;
+  in.measures.twoRun = secondRun != nullptr;
   SweepOutcome out;
   out.rows.resize(sets.size());
   out.done.assign(sets.size(), false);
-
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> stop{false};
-  std::mutex mutex;  // guards finished, out.done and the progress calls
+  std::vector<std::size_t> all(sets.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   std::size_t finished = 0;
-
-  // Sets are handed out one at a time, so a thread that draws quick sets takes more of them. A
-  // failure (an error in one set, a thread that cannot start) stops the others at their next set
-  // or scan and reaches the caller from runParallel.
-  auto work = [&](unsigned) {
-    while (!stop.load(std::memory_order_relaxed)) {
-      const std::size_t i = next.fetch_add(1, std::memory_order_relaxed);
-      if (i >= sets.size()) return;
-      MapperSettings ms;
-      ms.model = settings.model;
-      ms.rule = settings.rule;
-      ms.parameters = sets[i];
-      ms.pose = settings.pose;
-      Mapper mapper(run.ring, settings.grid, ms);
-      VsdnsAccumulator vsdns;
-      mapper.setObserver(&vsdns);
-      if (!mapRun(mapper, run, cancel, stop)) return;
-      SweepRow row;
-      const VsdnsAccumulator::Result spread = vsdns.result();
-      row.vsdns = spread.vsdns;
-      row.cellsWithSpread = spread.cellsWithSpread;
-      const OccupancyMap first = mapper.snapshot();
-      row.noise = derivativeNoise(first);
-      if (secondRun) {
-        Mapper again(secondRun->ring, settings.grid, ms);
-        if (!mapRun(again, *secondRun, cancel, stop)) return;
-        row.twoRuns = compareTwoRuns(first, again.snapshot());
-      }
-      out.rows[i] = row;
-      const std::lock_guard<std::mutex> lock(mutex);
-      out.done[i] = true;
-      ++finished;
-      if (progress) progress(finished, sets.size());
-    }
-  };
-  const auto threads =
-      static_cast<unsigned>(std::clamp<std::size_t>(sets.size(), 1, parallelThreads()));
-  runParallel(threads, work, [&] { stop.store(true); });
-  out.completed = std::all_of(out.done.begin(), out.done.end(), [](bool b) { return b; });
+  out.completed = evaluateSets(
+      in, sets, all,
+      [&](std::size_t i, const SetEvaluation& e) {
+        SweepRow& row = out.rows[i];
+        row.vsdns = e.vsdns->vsdns;
+        row.cellsWithSpread = e.vsdns->cellsWithSpread;
+        row.noise = *e.derivative;
+        row.twoRuns = e.twoRun;
+        out.done[i] = true;
+        if (progress) progress(++finished, sets.size());
+      },
+      cancel);
   return out;
 }
 

@@ -5,10 +5,10 @@
 // noise and, given a second run over the same route, the two-run comparison). What paper 002 does
 // with its 1440 maps (Table 1) and what `sonargrid-cli reproduce arafat` reruns.
 //
-// Parallelism: as many sets are mapped at once as the thread policy gives (concurrency.h), each by
-// its own single-threaded Mapper (scan by scan, which Mapper guarantees bit-identical to its
-// threaded batch mapping). Row i always holds set i, so the rows do not depend on the number of
-// threads.
+// runSweep() is the generic sweep's engine (evaluateSets(), set_evaluation.h) asked for those three
+// measures: batched where batch_evaluation.h serves the model and rule, one map per set otherwise,
+// on the thread policy's threads (concurrency.h). Row i always holds set i, bit-identical to one
+// map of set i, so the rows do not depend on the number of threads.
 
 #include <atomic>
 #include <cstddef>

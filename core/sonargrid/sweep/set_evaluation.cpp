@@ -8,6 +8,7 @@
 
 #include "sonargrid/concurrency.h"
 #include "sonargrid/mapper.h"
+#include "sonargrid/sweep/batch_evaluation.h"
 
 namespace sg {
 namespace {
@@ -31,15 +32,7 @@ bool mapRun(Mapper& mapper, const Dataset& data, const std::atomic<bool>* cancel
 std::optional<SetEvaluation> evaluate(const SetEvaluationInput& in, const ParameterSet& set,
                                       const std::atomic<bool>* cancel,
                                       const std::atomic<bool>* stop) {
-  if (!in.run) throw std::invalid_argument("a sweep needs a log");
-  if (in.measures.twoRun && !in.secondRun)
-    throw std::invalid_argument("the two-run comparison needs a second log");
-  if (!in.measures.reference.empty() && !in.reference)
-    throw std::invalid_argument("reference metrics need a reference map");
-  for (const Dataset* d : {in.run, in.secondRun}) {
-    if (d && in.settings.pose == PoseSource::Truth && !d->hasTruth())
-      throw MapperError("the log has no true pose for every scan; map with odometry (--pose odom)");
-  }
+  checkSetEvaluationInput(in);
   MapperSettings ms;
   ms.model = in.settings.model;
   ms.rule = in.settings.rule;
@@ -49,25 +42,50 @@ std::optional<SetEvaluation> evaluate(const SetEvaluationInput& in, const Parame
   VsdnsAccumulator vsdns;
   if (in.measures.vsdns) mapper.setObserver(&vsdns);
   if (!mapRun(mapper, *in.run, cancel, stop)) return std::nullopt;
-  SetEvaluation out;
-  if (in.measures.vsdns) out.vsdns = vsdns.result();
+  std::optional<VsdnsAccumulator::Result> spread;
+  if (in.measures.vsdns) spread = vsdns.result();
+  if (!mapsNeeded(in.measures)) return measureSet(in, spread, nullptr, nullptr);
   const OccupancyMap first = mapper.snapshot();
-  if (in.measures.derivative) out.derivative = derivativeNoise(first);
-  if (in.measures.entropy) out.entropy = mapEntropy(first);
-  if (in.measures.twoRun) {
-    Mapper again(in.secondRun->ring, in.settings.grid, ms);
-    if (!mapRun(again, *in.secondRun, cancel, stop)) return std::nullopt;
-    out.twoRun = compareTwoRuns(first, again.snapshot());
-  }
-  if (!in.measures.reference.empty()) {
-    ScoreOptions options = in.measures.score;
-    options.metrics = in.measures.reference;
-    out.reference = scoreAgainstReference(first, *in.reference, options);
-  }
-  return out;
+  if (!in.measures.twoRun) return measureSet(in, spread, &first, nullptr);
+  Mapper again(in.secondRun->ring, in.settings.grid, ms);
+  if (!mapRun(again, *in.secondRun, cancel, stop)) return std::nullopt;
+  const OccupancyMap second = again.snapshot();
+  return measureSet(in, spread, &first, &second);
 }
 
 }  // namespace
+
+void checkSetEvaluationInput(const SetEvaluationInput& in) {
+  if (!in.run) throw std::invalid_argument("a sweep needs a log");
+  if (in.measures.twoRun && !in.secondRun)
+    throw std::invalid_argument("the two-run comparison needs a second log");
+  if (!in.measures.reference.empty() && !in.reference)
+    throw std::invalid_argument("reference metrics need a reference map");
+  for (const Dataset* d : {in.run, in.secondRun}) {
+    if (d && in.settings.pose == PoseSource::Truth && !d->hasTruth())
+      throw MapperError("the log has no true pose for every scan; map with odometry (--pose odom)");
+  }
+}
+
+bool mapsNeeded(const SetMeasures& m) {
+  return m.derivative || m.entropy || m.twoRun || !m.reference.empty();
+}
+
+SetEvaluation measureSet(const SetEvaluationInput& in,
+                         const std::optional<VsdnsAccumulator::Result>& vsdns,
+                         const OccupancyMap* first, const OccupancyMap* second) {
+  SetEvaluation out;
+  if (in.measures.vsdns) out.vsdns = vsdns;
+  if (in.measures.derivative) out.derivative = derivativeNoise(*first);
+  if (in.measures.entropy) out.entropy = mapEntropy(*first);
+  if (in.measures.twoRun) out.twoRun = compareTwoRuns(*first, *second);
+  if (!in.measures.reference.empty()) {
+    ScoreOptions options = in.measures.score;
+    options.metrics = in.measures.reference;
+    out.reference = scoreAgainstReference(*first, *in.reference, options);
+  }
+  return out;
+}
 
 std::optional<SetEvaluation> evaluateSet(const SetEvaluationInput& input, const ParameterSet& set,
                                          const std::atomic<bool>* cancel) {
@@ -77,6 +95,7 @@ std::optional<SetEvaluation> evaluateSet(const SetEvaluationInput& input, const 
 bool evaluateSets(const SetEvaluationInput& input, const std::vector<ParameterSet>& sets,
                   const std::vector<std::size_t>& indices, const SetFinished& finished,
                   const std::atomic<bool>* cancel) {
+  if (batchEvaluable(input)) return evaluateSetsBatched(input, sets, indices, finished, cancel);
   for (std::size_t i : indices) {
     if (i >= sets.size()) throw std::invalid_argument("a sweep index beyond its sets");
   }

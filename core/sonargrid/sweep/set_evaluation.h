@@ -57,15 +57,28 @@ struct SetEvaluationInput {
 std::optional<SetEvaluation> evaluateSet(const SetEvaluationInput& input, const ParameterSet& set,
                                          const std::atomic<bool>* cancel = nullptr);
 
-// Evaluates sets[indices[k]] for every k on the thread policy's threads (parallelThreads()), each
-// set on one thread, scan by scan (which Mapper guarantees bit-identical to its batch map); each
-// finished one is handed to `finished(k, evaluation)`, calls serialised (under one lock) but in any
-// order and from any of the threads. Returns true when every index was evaluated, false when
-// `cancel` stopped it. The first error of any thread (or of `finished`) stops the others and is
-// rethrown once all have stopped.
+// Evaluates sets[indices[k]] for every k on the thread policy's threads (parallelThreads()): in
+// batches of sets mapped together where batch_evaluation.h serves the model, rule and measures,
+// otherwise each set on one thread, scan by scan (which Mapper guarantees bit-identical to its
+// batch map). Either way every evaluation equals evaluateSet()'s, bit for bit. Each finished one is
+// handed to `finished(k, evaluation)`, calls serialised (under one lock) but in any order and from
+// any of the threads. Returns true when every index was evaluated, false when `cancel` stopped it.
+// The first error of any thread (or of `finished`) stops the others and is rethrown once all have
+// stopped.
 using SetFinished = std::function<void(std::size_t k, const SetEvaluation& evaluation)>;
 bool evaluateSets(const SetEvaluationInput& input, const std::vector<ParameterSet>& sets,
                   const std::vector<std::size_t>& indices, const SetFinished& finished,
                   const std::atomic<bool>* cancel = nullptr);
+
+// What evaluateSet() and the batched path share. checkSetEvaluationInput() throws what
+// evaluateSet() throws for a missing run, second run or reference and for --pose truth without true
+// poses. mapsNeeded(): whether a measure reads the map (all but VSDNS). measureSet() gives the
+// evaluation from VSDNS's result (when measured) and the set's map of each run (`first` when
+// mapsNeeded(), `second` with the two-run comparison).
+void checkSetEvaluationInput(const SetEvaluationInput& input);
+bool mapsNeeded(const SetMeasures& measures);
+SetEvaluation measureSet(const SetEvaluationInput& input,
+                         const std::optional<VsdnsAccumulator::Result>& vsdns,
+                         const OccupancyMap* first, const OccupancyMap* second);
 
 }  // namespace sg

@@ -286,4 +286,46 @@ std::vector<ParameterSet> sweepSets(const ParameterSet& base, const std::vector<
   return sets;
 }
 
+std::vector<std::string> splitCommas(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (true) {
+    const auto at = text.find(',', start);
+    out.push_back(text.substr(start, at == std::string::npos ? std::string::npos : at - start));
+    if (at == std::string::npos) return out;
+    start = at + 1;
+  }
+}
+
+SweepSpace sweepSpace(const ParameterSet& base, const std::vector<std::string>& axisTexts,
+                      const std::vector<SweepTie>& ties) {
+  SweepSpace space;
+  for (std::size_t i = 0; i < axisTexts.size(); ++i) {
+    try {
+      space.axes.push_back(parseSweepAxis(axisTexts[i], base));
+    } catch (const SweepSpecError& e) {
+      throw SweepSpaceError(e.what(), i);
+    }
+  }
+  try {
+    space.sets = sweepSets(base, space.axes, ties);
+  } catch (const SweepSpecError& e) {
+    throw SweepSpaceError(e.what(), std::nullopt);
+  }
+  for (const SweepAxis& a : space.axes) {
+    std::string values;
+    for (double v : a.values) values += (values.empty() ? "" : ",") + shortestText(v);
+    space.fields.emplace_back("grid", a.parameter + "=" + values);
+  }
+  for (const SweepTie& t : ties) space.fields.emplace_back("tie", t.text());
+  return space;
+}
+
+GridSpec gridOverRuns(const GridSpec& a, const GridSpec& b) {
+  const Position lo = a.origin.cwiseMin(b.origin);
+  const Position hi = (a.origin + Position(a.widthMetres(), a.heightMetres()))
+                          .cwiseMax(b.origin + Position(b.widthMetres(), b.heightMetres()));
+  return GridSpec::covering(lo, hi, a.cellSize, 0.0);
+}
+
 }  // namespace sg

@@ -7,10 +7,13 @@
 // set it cannot map.
 
 #include <cstddef>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "sonargrid/grid_spec.h"
 #include "sonargrid/parameters.h"
 
 namespace sg {
@@ -69,5 +72,35 @@ void applyTies(ParameterSet& set, const std::vector<SweepTie>& ties);
 
 // The shortest text that reads back to the same double ("0.15", "1e-05").
 std::string shortestText(double v);
+
+// The comma-separated fields of a text, empty ones included ("a,,b": "a", "", "b"; "": one "").
+std::vector<std::string> splitCommas(const std::string& text);
+
+// A sweep's parameter space, as `sonargrid-cli sweep` and `goodness-study` (and the app's sweep
+// view) set it up: the axes read from their texts, the sets they span with the ties, and the
+// fields a sweep CSV's header records for them: ("grid", "p5=6,15") per axis and ("tie",
+// "p1=1-p4") per tie, in order.
+struct SweepSpace {
+  std::vector<SweepAxis> axes;
+  std::vector<ParameterSet> sets;
+  std::vector<std::pair<std::string, std::string>> fields;
+};
+// A SweepSpecError of sweepSpace(): `axis` is the index of the axis text at fault, empty when the
+// axes are good but do not span (a tie, the number of sets).
+class SweepSpaceError : public SweepSpecError {
+ public:
+  SweepSpaceError(const std::string& what, std::optional<std::size_t> at)
+      : SweepSpecError(what), axis(at) {}
+  std::optional<std::size_t> axis;
+};
+// parseSweepAxis() of every text, then sweepSets(); throws SweepSpaceError with their message.
+SweepSpace sweepSpace(const ParameterSet& base, const std::vector<std::string>& axisTexts,
+                      const std::vector<SweepTie>& ties);
+
+// The one grid of a sweep over two runs (the two-run comparison compares them cell for cell): the
+// union of the runs' fitting grids of one cell size, both snapped to multiples of it
+// (Dataset::fittingGrid), so the union is too and the runs' cells line up. Throws GridLimitError
+// as GridSpec::covering() does.
+GridSpec gridOverRuns(const GridSpec& first, const GridSpec& second);
 
 }  // namespace sg

@@ -53,17 +53,6 @@ std::optional<Metric> referenceMetric(const std::string& name) {
 
 const char* const kGoodness[] = {"vsdns", "derivative", "entropy", "two-run"};
 
-std::vector<std::string> splitCommas(const std::string& s) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  while (true) {
-    const auto at = s.find(',', start);
-    out.push_back(s.substr(start, at == std::string::npos ? std::string::npos : at - start));
-    if (at == std::string::npos) return out;
-    start = at + 1;
-  }
-}
-
 }  // namespace
 
 std::vector<std::string> allSweepMetrics() {
