@@ -43,44 +43,13 @@ double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-struct Pair {
-  std::string model, rule;
-  std::string key() const { return model + "/" + rule; }
-};
-
-std::vector<Pair> allowedPairs() {
-  std::vector<Pair> pairs;
-  for (const std::string& m : sensorModelNames()) {
-    for (const std::string& r : updateRuleNames()) {
-      if (compatibility(m, r).allowed) pairs.push_back({m, r});
-    }
-  }
-  return pairs;
-}
-
-// The median full re-map of `data` on `grid` per pair, in ms; the cone tables are built before the
-// clock starts (the mapper's constructor), as they are once per cell size in a session.
-Json remapTimes(const Dataset& data, const GridSpec& grid, const std::vector<Pair>& pairs,
+// The median full re-map of `data` on `grid` per pair, in ms.
+Json remapTimes(const Dataset& data, const GridSpec& grid, const std::vector<workload::Pair>& pairs,
                 int repeats, const char* what, bool progress) {
   Json out = Json::object();
-  for (const Pair& p : pairs) {
-    MapperSettings settings;
-    settings.model = p.model;
-    settings.rule = p.rule;
-    Mapper mapper(data.ring, grid, settings);
-    std::vector<double> ms;
-    for (int k = 0; k < repeats; ++k) {
-      const Clock::time_point t0 = Clock::now();
-      mapper.mapDataset(data);
-      ms.push_back(msSince(t0));
-    }
-    out[p.key()] = median(ms);
+  for (const workload::Pair& p : pairs) {
+    Mapper mapper(data.ring, grid, p.settings());
+    out[p.key()] = workload::median(workload::remapMilliseconds(mapper, data, repeats));
     if (progress)
       std::cerr << "\r" << what << " " << out.size() << "/" << pairs.size() << std::flush;
   }
@@ -164,7 +133,7 @@ int runBench(Arguments& args) {
   args.finish();
 
   const int repeats = quick ? 1 : kRepeats;
-  const std::vector<Pair> pairs = allowedPairs();
+  const std::vector<workload::Pair> pairs = workload::allowedPairs();
   const reproduce::fs::path officePath = reproduce::defaultDatasets() / "office" / "office.sglog";
   const Dataset office = reproduce::loadDataset(officePath);
   const GridSpec officeGrid = office.fittingGrid(PoseSource::Odometry, 0.05);

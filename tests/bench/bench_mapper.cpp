@@ -39,22 +39,19 @@ void remap(benchmark::State& state, const sg::Dataset& d, const std::string& mod
 }
 
 int registerAll() {
-  for (const std::string& m : sg::sensorModelNames()) {
-    for (const std::string& r : sg::updateRuleNames()) {
-      if (!sg::compatibility(m, r).allowed) continue;
-      benchmark::RegisterBenchmark(
-          ("sim/" + m + "/" + r).c_str(),
-          [m, r](benchmark::State& s) { remap(s, simulatedWorkload(), m, r); })
-          ->Unit(benchmark::kMillisecond)
-          ->Iterations(1)
-          ->UseRealTime();
-      benchmark::RegisterBenchmark(
-          ("stress/" + m + "/" + r).c_str(),
-          [m, r](benchmark::State& s) { remap(s, stressWorkload(), m, r); })
-          ->Unit(benchmark::kMillisecond)
-          ->Iterations(1)
-          ->UseRealTime();
-    }
+  for (const sg::workload::Pair& p : sg::workload::allowedPairs()) {
+    const std::string m = p.model, r = p.rule;
+    benchmark::RegisterBenchmark(
+        ("sim/" + m + "/" + r).c_str(),
+        [m, r](benchmark::State& s) { remap(s, simulatedWorkload(), m, r); })
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->UseRealTime();
+    benchmark::RegisterBenchmark(("stress/" + m + "/" + r).c_str(),
+                                 [m, r](benchmark::State& s) { remap(s, stressWorkload(), m, r); })
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->UseRealTime();
   }
   return 0;
 }

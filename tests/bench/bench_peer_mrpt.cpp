@@ -15,9 +15,10 @@
 // MRPT runs on one thread (its insertion is serial); SonarGrid on the thread policy's threads,
 // --threads N (issue 15's target is at 2).
 //
-//   bench_peer_mrpt [--threads N] [--repeat K] [--stress]
+//   bench_peer_mrpt [--threads N] [--repeat K] [--stress] [--only TEXT]
 //
-// Prints the median of K (default 5) timed runs of each, per pair.
+// Prints the median of K (default 5) timed runs of each, per pair (with --only, the pairs whose
+// model/rule name contains TEXT).
 
 #include <mrpt/maps/COccupancyGridMap2D.h>
 #include <mrpt/obs/CObservationRange.h>
@@ -41,12 +42,6 @@ using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 struct Observation {
@@ -83,6 +78,7 @@ int main(int argc, char** argv) {
   unsigned threads = 2;
   int repeat = 5;
   bool stress = false;
+  std::string only;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
       threads = static_cast<unsigned>(std::atoi(argv[++i]));
@@ -90,8 +86,11 @@ int main(int argc, char** argv) {
       repeat = std::max(1, std::atoi(argv[++i]));
     } else if (std::strcmp(argv[i], "--stress") == 0) {
       stress = true;
+    } else if (std::strcmp(argv[i], "--only") == 0 && i + 1 < argc) {
+      only = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: bench_peer_mrpt [--threads N] [--repeat K] [--stress]\n");
+      std::fprintf(stderr,
+                   "usage: bench_peer_mrpt [--threads N] [--repeat K] [--stress] [--only TEXT]\n");
       return 2;
     }
   }
@@ -132,27 +131,24 @@ int main(int argc, char** argv) {
   };
   std::printf("%-32s %10s %10s %8s\n", "model/rule", "sonargrid", "mrpt", "ratio");
   std::vector<double> ratios;
-  for (const std::string& m : sg::sensorModelNames()) {
-    for (const std::string& r : sg::updateRuleNames()) {
-      if (!sg::compatibility(m, r).allowed) continue;
-      sg::MapperSettings settings;
-      settings.model = m;
-      settings.rule = r;
-      sg::Mapper mapper(d.ring, grid, settings);
-      std::vector<double> ours, theirs;
-      for (int k = 0; k < repeat; ++k) {  // alternating, so both see the same machine load
-        const Clock::time_point t0 = Clock::now();
-        mapper.mapDataset(d);
-        ours.push_back(msSince(t0));
-        theirs.push_back(mrptOnce());
-      }
-      const double a = median(ours), b = median(theirs);
-      ratios.push_back(b / a);
-      std::printf("%-32s %10.1f %10.1f %7.2fx\n", (m + "/" + r).c_str(), a, b, b / a);
-      std::fflush(stdout);
+  for (const sg::workload::Pair& p : sg::workload::allowedPairs()) {
+    if (p.key().find(only) == std::string::npos) continue;
+    sg::Mapper mapper(d.ring, grid, p.settings());
+    std::vector<double> ours, theirs;
+    for (int k = 0; k < repeat; ++k) {  // alternating, so both see the same machine load
+      ours.push_back(sg::workload::remapMilliseconds(mapper, d, 1).front());
+      theirs.push_back(mrptOnce());
     }
+    const double a = sg::workload::median(ours), b = sg::workload::median(theirs);
+    ratios.push_back(b / a);
+    std::printf("%-32s %10.1f %10.1f %7.2fx\n", p.key().c_str(), a, b, b / a);
+    std::fflush(stdout);
+  }
+  if (ratios.empty()) {
+    std::fprintf(stderr, "bench_peer_mrpt: no pair matches --only %s\n", only.c_str());
+    return 2;
   }
   std::printf("lowest ratio %.2fx, median %.2fx\n", *std::min_element(ratios.begin(), ratios.end()),
-              median(ratios));
+              sg::workload::median(ratios));
   return 0;
 }

@@ -4,14 +4,21 @@
 // keeps results from one that does not.
 // Run: valgrind --tool=callgrind build/tests/bench/profile_remap murphy dempster-shafer 6400
 //      then callgrind_annotate --inclusive=yes and divide remapOnce by the readings printed.
+// With a fifth argument K, it also times K batch re-maps (mapDataset) on one thread and prints
+// their median CPU time: on a loaded machine the CPU time of one thread varies far less than the
+// wall-clock time, so two builds can be compared on it (a paired A/B of the engine).
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <string>
+#include <vector>
 
 #include "bench_workload.h"
+#include "sonargrid/concurrency.h"
 
 namespace {
 
@@ -36,11 +43,17 @@ std::uint64_t digest(const sg::OccupancyMap& m) {
   return h;
 }
 
+double cpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: profile_remap MODEL RULE [READINGS] [sim|stress]\n");
+    std::fprintf(stderr, "usage: profile_remap MODEL RULE [READINGS] [sim|stress] [K]\n");
     return 2;
   }
   const int readings = argc > 3 ? std::atoi(argv[3]) : 6400;
@@ -57,5 +70,18 @@ int main(int argc, char** argv) {
   const double cells = bench::cellsPerReading(mapper, d);
   std::printf("%s/%s readings %zu cells/reading %.1f digest %016llx\n", argv[1], argv[2],
               mapper.readingsIntegrated(), cells, static_cast<unsigned long long>(h));
+  const int timed = argc > 5 ? std::atoi(argv[5]) : 0;
+  if (timed > 0) {
+    sg::ScopedThreadCount one(1);
+    std::vector<double> ms;
+    for (int k = 0; k < timed; ++k) {
+      const double t0 = cpuMs();
+      mapper.mapDataset(d);
+      ms.push_back(cpuMs() - t0);
+    }
+    std::sort(ms.begin(), ms.end());
+    std::printf("batch re-map on one thread: median CPU %.1f ms of %d (min %.1f)\n",
+                ms[ms.size() / 2], timed, ms.front());
+  }
   return 0;
 }

@@ -66,8 +66,10 @@ class SensorModel {
   // computes the whole footprint and keeps those rows; the cone models rasterise only the window.
   virtual void footprintRows(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
                              RowWindow window, Footprint& out) const;
-  // Whether footprintRows() costs about its share of footprint() (it rasterises only the window),
-  // so that the mapper gains by splitting the rows between threads.
+  // Whether footprintRows() rasterises only the window's rows, so that it costs about the window's
+  // share of footprint() (the cone models; the default above computes the whole footprint and
+  // filters it). The mapper splits a batch between threads by stripes of rows only for such a
+  // model and maps the others (HIMM's axis line) on one thread (Mapper::integrateBeams).
   virtual bool rasterisesRows() const { return false; }
 };
 

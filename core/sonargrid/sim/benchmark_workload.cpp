@@ -2,6 +2,7 @@
 #include "sonargrid/sim/benchmark_workload.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -106,6 +107,41 @@ Dataset roomLoopLog(std::size_t readings) {
     }
   }
   return d;
+}
+
+MapperSettings Pair::settings() const {
+  MapperSettings s;
+  s.model = model;
+  s.rule = rule;
+  return s;
+}
+
+std::vector<Pair> allowedPairs() {
+  std::vector<Pair> pairs;
+  for (const std::string& m : sensorModelNames()) {
+    for (const std::string& r : updateRuleNames()) {
+      if (compatibility(m, r).allowed) pairs.push_back({m, r});
+    }
+  }
+  return pairs;
+}
+
+std::vector<double> remapMilliseconds(Mapper& mapper, const Dataset& data, int repeats) {
+  using Clock = std::chrono::steady_clock;
+  std::vector<double> ms;
+  for (int k = 0; k < repeats; ++k) {
+    const Clock::time_point t0 = Clock::now();
+    mapper.mapDataset(data);
+    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+  }
+  return ms;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 }  // namespace sg::workload

@@ -12,9 +12,12 @@
 // full one does.
 
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include "sonargrid/dataset.h"
 #include "sonargrid/grid_spec.h"
+#include "sonargrid/mapper.h"
 #include "sonargrid/pose.h"
 
 namespace sg::workload {
@@ -36,5 +39,20 @@ Dataset stressWorkload(int readings);
 // 16-sonar Pioneer ring for a million) driving loops in a 10 m × 8 m room, each range the distance
 // to the room's walls (no echo past the ring's maximum range).
 Dataset roomLoopLog(std::size_t readings);
+
+// What every re-map benchmark times (`sonargrid-cli bench`, bench_peer_mrpt): each model × rule
+// pair the registry allows, keyed "model/rule", models then rules in registry order.
+struct Pair {
+  std::string model, rule;
+  std::string key() const { return model + "/" + rule; }
+  MapperSettings settings() const;  // the pair at its default parameters
+};
+std::vector<Pair> allowedPairs();
+
+// Wall-clock milliseconds of `repeats` full re-maps (Mapper::mapDataset) of `data` by `mapper`, one
+// each; the mapper (and its cone tables) is made before, as it is once per cell size in a session.
+std::vector<double> remapMilliseconds(Mapper& mapper, const Dataset& data, int repeats);
+// The median of timings (the mean of the middle two for an even count); 0 for none.
+double median(std::vector<double> values);
 
 }  // namespace sg::workload
