@@ -20,6 +20,20 @@
 #include "sonargrid/models/parameterized_shape.h"
 #include "sonargrid/rules/rule_classes.h"
 
+// The clones' resolver (an ifunc) runs while the dynamic loader relocates the program, before
+// ThreadSanitizer's runtime is set up; instrumented, it crashes every TSan binary at start. Under
+// TSan the kernel is therefore built once, for the baseline (the results are the same bits).
+#if defined(__SANITIZE_THREAD__)
+#define SG_BATCH_CLONES
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define SG_BATCH_CLONES
+#endif
+#endif
+#ifndef SG_BATCH_CLONES
+#define SG_BATCH_CLONES __attribute__((target_clones("default", "avx2", "avx512f")))
+#endif
+
 namespace sg {
 // Not in an anonymous namespace: batchRow() is cloned per instruction set, which needs a symbol
 // with external linkage, and so do the types of its argument.
@@ -190,7 +204,7 @@ struct RowJob {
 // coneRow(), then per cell the Welford and Bayes steps of VsdnsAccumulator::add() and
 // BayesRule::apply() across the lanes. Cloned for wider vectors (chosen when the program starts);
 // every clone does the same operations per lane.
-__attribute__((target_clones("default", "avx2", "avx512f"))) void batchRow(const RowJob& job) {
+SG_BATCH_CLONES void batchRow(const RowJob& job) {
   if (job.state->uniform) {
     uniformRow(job);
     return;
