@@ -20,13 +20,14 @@
 #include "sonargrid/models/parameterized_shape.h"
 #include "sonargrid/rules/rule_classes.h"
 
-// The clones' resolver (an ifunc) runs while the dynamic loader relocates the program, before
-// ThreadSanitizer's runtime is set up; instrumented, it crashes every TSan binary at start. Under
-// TSan the kernel is therefore built once, for the baseline (the results are the same bits).
-#if defined(__SANITIZE_THREAD__)
+// The clones' resolver (an ifunc) runs while the dynamic loader relocates the program, before a
+// sanitizer's runtime is set up; instrumented by ThreadSanitizer, it crashes every binary at start.
+// Under a sanitizer (ThreadSanitizer, AddressSanitizer: the sanitizer and fuzz jobs) the kernel is
+// therefore built once, for the baseline; the results are the same bits.
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
 #define SG_BATCH_CLONES
 #elif defined(__has_feature)
-#if __has_feature(thread_sanitizer)
+#if __has_feature(thread_sanitizer) || __has_feature(address_sanitizer)
 #define SG_BATCH_CLONES
 #endif
 #endif
