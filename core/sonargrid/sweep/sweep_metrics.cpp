@@ -9,41 +9,6 @@
 namespace sg {
 namespace {
 
-// The JSON keys of `score --json` (docs/cli.md), which are the sweep's column names.
-const char* scoreKey(Metric m) {
-  switch (m) {
-    case Metric::Iop:
-      return "iop_mm";
-    case Metric::Correlation:
-      return "correlation_pct";
-    case Metric::MapScore:
-      return "map_score_pct";
-    case Metric::MapScoreOccupied:
-      return "map_score_occupied_pct";
-    case Metric::Match:
-      return "match_bits";
-    case Metric::PathFalsePositive:
-      return "path_false_positive_pct";
-    case Metric::PathFalseNegative:
-      return "path_false_negative_pct";
-    case Metric::CrossEntropy:
-      return "cross_entropy";
-    case Metric::Brier:
-      return "brier";
-    case Metric::Auc:
-      return "auc";
-    case Metric::Precision:
-      return "precision";
-    case Metric::Recall:
-      return "recall";
-    case Metric::F1:
-      return "f1";
-    case Metric::Iou:
-      return "iou";
-  }
-  return "?";
-}
-
 std::optional<Metric> referenceMetric(const std::string& name) {
   for (Metric m : allMetrics()) {
     if (name == metricName(m)) return m;
@@ -112,7 +77,7 @@ std::vector<std::string> metricColumns(const std::vector<std::string>& metrics) 
       out.push_back("two_run_positive");
       out.push_back("two_run_negative");
     } else if (const auto r = referenceMetric(m)) {
-      out.push_back(scoreKey(*r));
+      out.push_back(metricJsonKey(*r));
     }
   }
   return out;
