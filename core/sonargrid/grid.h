@@ -129,6 +129,14 @@ class Grid {
     return std::launder(reinterpret_cast<const Cell*>(planes_[plane].get()));
   }
 
+  // The cells of a plane of one-byte values, as bytes, whatever the rule's type for them (a rule's
+  // byteTransition(), update_rule.h). Throws std::logic_error when the plane's cells are not one
+  // byte.
+  std::uint8_t* bytes(std::size_t plane = 0) {
+    checkType(plane < layout_.planes() && layout_.bytes(plane) == 1);
+    return reinterpret_cast<std::uint8_t*>(planes_[plane].get());
+  }
+
   // Whether at least one reading wrote the cell.
   bool observed(std::size_t cell) const { return (marks_[cell] & kObserved) != 0; }
   // observed() of cells [begin, end) as 0 or 1 into out[begin, end) (OccupancyMap::observed).
@@ -154,6 +162,9 @@ class Grid {
     }
     for (; c != end; ++c) marks[c->cell] = kBoth;
   }
+
+  // markWritten() of one cell.
+  void markWritten(std::uint32_t cell) { marks_[cell] = kObserved | kWritten; }
 
   // Whether every cell of the world box [lo, hi] is in the grid.
   bool covers(const Position& lo, const Position& hi) const;

@@ -212,6 +212,17 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
   const unsigned threads =
       n < kParallelMinimum || !model_->rasterisesRows() ? 1u : parallelThreads();
   if (threads == 1) {
+    // Straight into the grid when the model can (HIMM's axis with the HIMM rule), a run of
+    // readings at a time between looks at the cancel flag.
+    if (!observer_ && model_->integrateDirect(beams.data(), 0, *rule_, grid_)) {
+      for (std::size_t i = 0; i < n; i += kCancelStride) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) return false;
+        const std::size_t count = std::min(kCancelStride, n - i);
+        model_->integrateDirect(beams.data() + i, count, *rule_, grid_);
+        readings_ += count;
+      }
+      return true;
+    }
     for (std::size_t i = 0; i < n; ++i) {
       if (cancel && i % kCancelStride == 0 && cancel->load(std::memory_order_relaxed)) return false;
       scratch_.clear();

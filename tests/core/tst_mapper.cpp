@@ -3,6 +3,7 @@
 // results are deterministic, and the errors a user can cause are reported.
 
 #include <QtTest>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <set>
@@ -82,6 +83,8 @@ class TstMapper : public QObject {
  private slots:
   void batchEqualsIncremental_data();
   void batchEqualsIncremental();
+  void himmDirectEqualsFootprints_data();
+  void himmDirectEqualsFootprints();
   void parallelBatchEqualsIncremental_data();
   void parallelBatchEqualsIncremental();
   void parallelIsRepeatable();
@@ -138,6 +141,67 @@ void TstMapper::batchEqualsIncremental() {
   for (const Scan& scan : d.scans) incrementalFree.integrate(scan);
   QVERIFY(sameLayers(batchFree.snapshot(), incrementalFree.snapshot()));
   QVERIFY(!sameLayers(batchFree.snapshot(), batch.snapshot()));
+}
+
+void TstMapper::himmDirectEqualsFootprints_data() {
+  QTest::addColumn<double>("increment");
+  QTest::addColumn<double>("decrement");
+  QTest::addColumn<double>("cvMax");
+  QTest::addColumn<double>("pHit");
+  QTest::addColumn<double>("pMiss");
+  QTest::addColumn<double>("noEcho");
+  // Paper 000 §2.2's I⁺ = 3, I⁻ = 1, CV_max = 15; then the parameters' limits (himm_rule.cpp,
+  // himm_model.cpp): a hit of p 0.5 and a miss of p 0.5 carry no evidence either way, so the HIMM
+  // rule leaves such cells alone (but they are still observed).
+  QTest::newRow("paper") << 3.0 << 1.0 << 15.0 << 0.7 << 0.4 << 0.0;
+  QTest::newRow("no echo clears") << 3.0 << 1.0 << 15.0 << 0.7 << 0.4 << 1.0;
+  QTest::newRow("saturate at 1") << 15.0 << 0.0 << 1.0 << 1.0 << 0.0 << 1.0;
+  QTest::newRow("big decrement") << 1.0 << 15.0 << 15.0 << 0.9 << 0.1 << 0.0;
+  QTest::newRow("hit says nothing") << 3.0 << 1.0 << 15.0 << 0.5 << 0.4 << 0.0;
+  QTest::newRow("miss says nothing") << 3.0 << 1.0 << 15.0 << 0.7 << 0.5 << 1.0;
+}
+
+// A batch re-map with HIMM's model and rule folds the axis straight into the grid
+// (SensorModel::integrateDirect); scan by scan goes through footprints and the rule's apply(). The
+// two must leave the same bytes, on a grid that the corridor's beams leave on every side, so that
+// some axis cells fall outside it and are skipped.
+void TstMapper::himmDirectEqualsFootprints() {
+  QFETCH(double, increment);
+  QFETCH(double, decrement);
+  QFETCH(double, cvMax);
+  QFETCH(double, pHit);
+  QFETCH(double, pMiss);
+  QFETCH(double, noEcho);
+  const Dataset d = corridor();
+  MapperSettings s;
+  s.model = "himm";
+  s.rule = "himm";
+  s.parameters = defaultParameters(s.model, s.rule);
+  s.parameters.set("increment", increment);
+  s.parameters.set("decrement", decrement);
+  s.parameters.set("cv_max", cvMax);
+  s.parameters.set("p_hit", pHit);
+  s.parameters.set("p_miss", pMiss);
+  s.parameters.set("no_echo", noEcho);
+  // The robot drives from x = 0 to 3 m between walls at y = ±1.2 m: this grid holds the walls
+  // from x = 0.5 to 2.5 m only, so the beams leave it at both ends.
+  GridSpec grid;
+  grid.origin = Position(0.5, -1.5);
+  grid.cellSize = 0.05;
+  grid.width = 40;
+  grid.height = 60;
+  Mapper batch(d.ring, grid, s);
+  batch.mapDataset(d);
+  Mapper incremental(d.ring, grid, s);
+  for (const Scan& scan : d.scans) incremental.integrate(scan);
+  QCOMPARE(batch.readingsIntegrated(), d.readingCount());
+  const OccupancyMap a = batch.snapshot(), b = incremental.snapshot();
+  QVERIFY(sameLayers(a, b));
+  QCOMPARE(a.level, b.level);  // the CVs themselves (levelOf is the CV)
+  // Not an empty comparison: readings were observed and, but for the rows whose evidence says
+  // nothing, changed CVs.
+  QVERIFY(std::count(a.observed.begin(), a.observed.end(), 1) > 100);
+  if (pHit > 0.5) QVERIFY(a.filledCount() > 0);
 }
 
 // The bundled room log has 11 888 readings, above the mapper's threshold for working on several

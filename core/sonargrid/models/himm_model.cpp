@@ -4,11 +4,14 @@
 // and −I⁻. For the probabilistic rules the two kinds carry OctoMap's hit and miss probabilities,
 // which makes HIMM-with-log-odds the ray-casting update of OctoMap.
 
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include "sonargrid/models/cone_model.h"
+#include "sonargrid/grid.h"
 #include "sonargrid/models/model_classes.h"
+#include "sonargrid/rules/update_rule.h"
 
 namespace sg {
 namespace {
@@ -22,8 +25,20 @@ class HimmModel final : public SensorModel {
   double reach(double maxRange) const override;
   void footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
                  Footprint& out) const override;
+  bool integrateDirect(const Beam* beams, std::size_t count, const UpdateRule& rule,
+                       Grid& grid) const override;
 
  private:
+  // What footprint() gives the axis cells before the echo, and the echo's cell.
+  CellEvidence freeEvidence() const {
+    const ModelValue v = fromProbability(pMiss_);
+    return CellEvidence(0, v.empty, v.occupied, v.probability);
+  }
+  CellEvidence hitEvidence() const {
+    const ModelValue v = fromProbability(pHit_);
+    return CellEvidence(0, v.empty, v.occupied, v.probability);
+  }
+
   double pHit_ = 0.7, pMiss_ = 0.4;
   bool noEchoFree_ = false;
 };
@@ -76,16 +91,15 @@ double HimmModel::reach(double maxRange) const {
   return maxRange;
 }
 
-void HimmModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& /*tables*/,
-                          Footprint& out) const {
-  const bool echo = beam.echo();
-  if (!echo && !noEchoFree_) return;
-  const double length = echo ? beam.range : beam.maxRange;
-  const ModelValue hit = fromProbability(pHit_);
-  ModelValue miss = fromProbability(pMiss_);
+namespace {
 
-  // Grid traversal of the axis segment (Amanatides & Woo 1987) in cell units: every cell the
-  // segment passes through, in order from the sensor, each once.
+// Calls emit(x, y, last) for every cell the axis segment of `beam` passes through, `length`
+// metres long, in order from the sensor, each once (Amanatides & Woo 1987, in cell units), with
+// last = true for the final cell only; x and y may lie outside the grid. The step is chosen
+// without a branch, as it follows the slope's pattern, which a branch predictor misses about once
+// a cell; the arithmetic is that of Amanatides & Woo, so the cells are the same.
+template <class Emit>
+void traceAxis(const Beam& beam, double length, const GridSpec& grid, Emit&& emit) {
   const double c = grid.cellSize;
   const double u0 = (beam.sensor.x() - grid.origin.x()) / c;
   const double v0 = (beam.sensor.y() - grid.origin.y()) / c;
@@ -103,24 +117,9 @@ void HimmModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTabl
   double tMaxX = du != 0.0 ? (stepX > 0 ? ix + 1 - u0 : u0 - ix) * tDeltaX : kInf;
   double tMaxY = dv != 0.0 ? (stepY > 0 ? iy + 1 - v0 : v0 - iy) * tDeltaY : kInf;
   const int steps = std::abs(endX - ix) + std::abs(endY - iy);
-
-  // The cells are written through a pointer, sized once: steps + 1 cells at most (those outside
-  // the grid are skipped). The step is chosen without a branch, as it follows the slope's pattern,
-  // which a branch predictor misses about once a cell; the arithmetic is that of Amanatides & Woo,
-  // so the cells are the same.
-  const std::size_t start = out.cells.size();
-  out.cells.resize(start + static_cast<std::size_t>(steps) + 1);
-  CellEvidence* dst = out.cells.data() + start;
-  const auto width = static_cast<unsigned>(grid.width);
-  const auto height = static_cast<unsigned>(grid.height);
-  const CellEvidence free(0, miss.empty, miss.occupied, miss.probability);
-  auto emit = [&](int x, int y, const CellEvidence& v) {
-    *dst = v;
-    dst->cell = static_cast<std::uint32_t>(y * grid.width + x);
-    dst += static_cast<unsigned>(x) < width && static_cast<unsigned>(y) < height ? 1 : 0;
-  };
+  emit.reserve(static_cast<std::size_t>(steps) + 1);
   for (int k = 0; k < steps; ++k) {
-    emit(ix, iy, free);
+    emit(ix, iy, false);
     const bool alongX = tMaxX < tMaxY;
     ix += alongX ? stepX : 0;
     iy += alongX ? 0 : stepY;
@@ -128,9 +127,75 @@ void HimmModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTabl
     tMaxX = alongX ? nextX : tMaxX;
     tMaxY = alongX ? tMaxY : nextY;
   }
-  const ModelValue& last = echo ? hit : miss;
-  emit(ix, iy, CellEvidence(0, last.empty, last.occupied, last.probability));
-  out.cells.resize(static_cast<std::size_t>(dst - out.cells.data()));
+  emit(ix, iy, true);
+}
+
+}  // namespace
+
+void HimmModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTables& /*tables*/,
+                          Footprint& out) const {
+  const bool echo = beam.echo();
+  if (!echo && !noEchoFree_) return;
+  const CellEvidence free = freeEvidence(), last = echo ? hitEvidence() : free;
+  // The cells are written through a pointer, sized once: steps + 1 cells at most (those outside
+  // the grid are skipped, without a branch).
+  struct Writer {
+    Footprint& out;
+    const GridSpec& grid;
+    const CellEvidence &free, &last;
+    std::size_t start = out.cells.size();
+    CellEvidence* dst = nullptr;
+    void reserve(std::size_t cells) {
+      out.cells.resize(start + cells);
+      dst = out.cells.data() + start;
+    }
+    void operator()(int x, int y, bool isLast) {
+      *dst = isLast ? last : free;
+      dst->cell = static_cast<std::uint32_t>(y * grid.width + x);
+      dst += static_cast<unsigned>(x) < static_cast<unsigned>(grid.width) &&
+                     static_cast<unsigned>(y) < static_cast<unsigned>(grid.height)
+                 ? 1
+                 : 0;
+    }
+  } writer{out, grid, free, last};
+  traceAxis(beam, echo ? beam.range : beam.maxRange, grid, writer);
+  out.cells.resize(static_cast<std::size_t>(writer.dst - out.cells.data()));
+}
+
+bool HimmModel::integrateDirect(const Beam* beams, std::size_t count, const UpdateRule& rule,
+                                Grid& grid) const {
+  // A one-byte rule says what each kind of cell does to every value a cell can hold: the axis
+  // cells then take a table look-up each, with the footprint's cells in the same order.
+  std::array<std::uint8_t, 256> freeStep{}, hitStep{};
+  if (!rule.byteTransition(freeEvidence(), freeStep) ||
+      !rule.byteTransition(hitEvidence(), hitStep)) {
+    return false;
+  }
+  struct Updater {
+    Grid& grid;
+    std::uint8_t* cv;
+    const std::uint8_t *free, *last;
+    void reserve(std::size_t /*cells*/) {}
+    void operator()(int x, int y, bool isLast) {
+      const GridSpec& spec = grid.spec();
+      if (static_cast<unsigned>(x) >= static_cast<unsigned>(spec.width) ||
+          static_cast<unsigned>(y) >= static_cast<unsigned>(spec.height)) {
+        return;
+      }
+      const auto cell = static_cast<std::uint32_t>(y * spec.width + x);
+      cv[cell] = (isLast ? last : free)[cv[cell]];
+      grid.markWritten(cell);
+    }
+  };
+  for (std::size_t i = 0; i < count; ++i) {
+    const Beam& beam = beams[i];
+    const bool echo = beam.echo();
+    if (!echo && !noEchoFree_) continue;
+    Updater updater{grid, grid.bytes(0), freeStep.data(),
+                    echo ? hitStep.data() : freeStep.data()};
+    traceAxis(beam, echo ? beam.range : beam.maxRange, grid.spec(), updater);
+  }
+  return true;
 }
 
 std::unique_ptr<SensorModel> makeHimmModel() {

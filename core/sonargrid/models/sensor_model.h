@@ -14,6 +14,9 @@
 
 namespace sg {
 
+class Grid;
+class UpdateRule;
+
 struct ModelInfo {
   std::string name;    // registry and CLI name, e.g. "hpf"
   std::string title;   // e.g. "Moravec–Elfes heuristic probability functions (HPF)"
@@ -71,6 +74,14 @@ class SensorModel {
   // filters it). The mapper splits a batch between threads by stripes of rows only for such a
   // model and maps the others (HIMM's axis line) on one thread (Mapper::integrateBeams).
   virtual bool rasterisesRows() const { return false; }
+  // Folds beams[0, count) into `grid` as footprint(), `rule`.apply() and Grid::markWritten() would,
+  // one beam after another, to the same bits, but without a footprint between them. Returns false,
+  // having done nothing, when the model has no such path for this rule (this default): then the
+  // mapper goes through footprints. HIMM's axis with a one-byte rule has one (himm_model.cpp).
+  virtual bool integrateDirect(const Beam* /*beams*/, std::size_t /*count*/,
+                               const UpdateRule& /*rule*/, Grid& /*grid*/) const {
+    return false;
+  }
 };
 
 // The registry: one place that knows every model.

@@ -2,8 +2,6 @@
 // HIMM's histogram grid (paper 000 §2.2): +I⁺ (3) for the echo cell, −I⁻ (1) for the cells before
 // it, CV clamped to [0, 15].
 
-#include <algorithm>
-
 #include "sonargrid/rules/rule_classes.h"
 
 namespace sg {
@@ -32,14 +30,13 @@ void HimmRule::configure(const ParameterSet& p) {
 
 void HimmRule::apply(const Footprint& fp, Grid& grid) const {
   HimmCell* const cells = grid.cells<HimmCell>();
-  for (const CellEvidence& c : fp.cells) {
-    std::uint8_t& cv = cells[c.cell].cv;
-    if (c.occupied > c.empty) {
-      cv = static_cast<std::uint8_t>(std::min(cvMax_, cv + increment_));
-    } else if (c.empty > c.occupied) {
-      cv = static_cast<std::uint8_t>(std::max(0, cv - decrement_));
-    }
-  }
+  for (const CellEvidence& c : fp.cells) cells[c.cell].cv = updated(cells[c.cell].cv, c);
+}
+
+bool HimmRule::byteTransition(const CellEvidence& evidence,
+                              std::array<std::uint8_t, 256>& table) const {
+  for (int v = 0; v < 256; ++v) table[v] = updated(static_cast<std::uint8_t>(v), evidence);
+  return true;
 }
 
 }  // namespace sg

@@ -3,6 +3,8 @@
 // The concrete update rules. Only the registry and tests need these names. Each names what it
 // keeps per grid cell (its planes: grid.h, CellLayout).
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 
 #include "sonargrid/rules/update_rule.h"
@@ -118,6 +120,8 @@ class HimmRule final : public RuleOnCells<HimmRule, HimmCell> {
   void configure(const ParameterSet& params) override;
   CellLayout layout() const override { return CellLayout::of(HimmCell{0}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
+  bool byteTransition(const CellEvidence& evidence,
+                      std::array<std::uint8_t, 256>& table) const override;
 
   double occupancyOf(const HimmCell& c) const { return c.cv / double(cvMax_); }
   double nativeOf(const HimmCell& c) const { return c.cv; }
@@ -126,6 +130,13 @@ class HimmRule final : public RuleOnCells<HimmRule, HimmCell> {
   double evidenceOf(const HimmCell& c) const { return c.cv / double(cvMax_); }  // CV, paper 000
 
  private:
+  // A cell's CV after one cell of a footprint: +I⁺ for occupied evidence, −I⁻ for free.
+  std::uint8_t updated(std::uint8_t cv, const CellEvidence& c) const {
+    if (c.occupied > c.empty) return static_cast<std::uint8_t>(std::min(cvMax_, cv + increment_));
+    if (c.empty > c.occupied) return static_cast<std::uint8_t>(std::max(0, cv - decrement_));
+    return cv;
+  }
+
   int increment_ = 3, decrement_ = 1, cvMax_ = 15;
 };
 

@@ -6,6 +6,7 @@
 // p(occupied), its own native value, the 16 levels and a "filled" flag, so views and metrics need
 // not know which rule ran.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -62,6 +63,15 @@ class UpdateRule {
   virtual void applyPart(const Footprint& part, const FootprintTotals& /*totals*/,
                          Grid& grid) const {
     apply(part, grid);
+  }
+
+  // For a rule that keeps one byte per cell (HIMM): the value apply() leaves in a cell that held
+  // v, for every v, when the cell is given `evidence`, as table[v]. Returns false, the table
+  // untouched, for any other rule. A model whose footprint gives many cells the same evidence can
+  // then map straight into the grid (SensorModel::integrateDirect).
+  virtual bool byteTransition(const CellEvidence& /*evidence*/,
+                              std::array<std::uint8_t, 256>& /*table*/) const {
+    return false;
   }
 
   virtual double occupancy(const Grid& grid, std::size_t cell) const = 0;  // p(occupied), [0, 1]
