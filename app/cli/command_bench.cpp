@@ -92,8 +92,9 @@ Json bytesPerCell() {
     settings.model = compatibility(settings.model, rule).allowed ? "hpf" : "himm";
     Mapper mapper(SonarRing::pioneer3dx(), spec, settings);
     const OccupancyMap m = mapper.snapshot();
-    const std::size_t view = sizeof(m.probability[0]) + sizeof(m.native[0]) + sizeof(m.level[0]) +
-                             sizeof(m.filled[0]) + sizeof(m.observed[0]);
+    const std::size_t view = sizeof(m.probability[0]) + sizeof(m.native[0]) +
+                             sizeof(m.evidence[0]) + sizeof(m.level[0]) + sizeof(m.filled[0]) +
+                             sizeof(m.observed[0]);
     out[rule] = mapper.storage().bytesPerCell() + view;
   }
   return out;

@@ -129,15 +129,15 @@ void TstCliBench::bytesPerCell_data() {
   QTest::addColumn<QString>("rule");
   QTest::addColumn<int>("bytes");
   // The rule's planes (rule_classes.h), 1 byte of observed/written mark (grid.h) and the snapshot
-  // a view reads (occupancy_map.h): probability and native as doubles, level, filled and observed
-  // as bytes, 8 + 8 + 1 + 1 + 1 = 19.
-  QTest::newRow("addition") << "addition" << 8 + 8 + 1 + 19;  // Emp and Occ, doubles
-  QTest::newRow("bayes") << "bayes" << 8 + 1 + 19;            // p, a double
-  QTest::newRow("bayes-recursive") << "bayes-recursive" << 8 + 1 + 19;
-  QTest::newRow("log") << "log" << 8 + 1 + 19;                           // Emp · Occ
-  QTest::newRow("logodds") << "logodds" << 8 + 1 + 19;                   // the odds
-  QTest::newRow("himm") << "himm" << 1 + 1 + 19;                         // CV, a byte
-  QTest::newRow("dempster-shafer") << "dempster-shafer" << 16 + 1 + 19;  // m(occ), m(emp)
+  // a view reads (occupancy_map.h): probability, native and evidence as doubles, level, filled and
+  // observed as bytes, 8 + 8 + 8 + 1 + 1 + 1 = 27.
+  QTest::newRow("addition") << "addition" << 8 + 8 + 1 + 27;  // Emp and Occ, doubles
+  QTest::newRow("bayes") << "bayes" << 8 + 1 + 27;            // p, a double
+  QTest::newRow("bayes-recursive") << "bayes-recursive" << 8 + 1 + 27;
+  QTest::newRow("log") << "log" << 8 + 1 + 27;                           // Emp · Occ
+  QTest::newRow("logodds") << "logodds" << 8 + 1 + 27;                   // the odds
+  QTest::newRow("himm") << "himm" << 1 + 1 + 27;                         // CV, a byte
+  QTest::newRow("dempster-shafer") << "dempster-shafer" << 16 + 1 + 27;  // m(occ), m(emp)
 }
 
 void TstCliBench::bytesPerCell() {
