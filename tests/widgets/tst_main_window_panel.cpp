@@ -107,7 +107,7 @@ class TestMainWindowPanel : public QObject {
   }
 
   void slowLogShowsAPreviewFirst() {
-    // The window previews a change on 10 cm cells when the last full re-map took over 30 ms; here
+    // The window previews a change on 10 cm cells when the last full re-map took over 80 ms; here
     // the threshold is 0 so that the room log, fast or not, is previewed. The preview is what the
     // CLI maps at 10 cm, shown in the same view, and the 5 cm map replaces it.
     app::MainWindow window;
