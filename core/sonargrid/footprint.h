@@ -62,6 +62,19 @@ struct Footprint {
   void clear() { cells.clear(); }
 };
 
+// A run of `count` consecutive cells of one grid row, from linear index `cell`, with the model's
+// three values side by side: what the cone models hand the rules directly on the mapper's batch
+// path (Mapper::integrateBeams without an observer), where a Footprint would be written and read
+// back once per cell. The cells and their values are those the Footprint would hold, in the same
+// order; every cell of a run is one the reading writes.
+struct EvidenceRun {
+  std::uint32_t cell;
+  int count;
+  const float* empty;
+  const float* occupied;
+  const float* probability;
+};
+
 // The grid rows a footprint is restricted to: those of [begin, end) in stripes of `stripe` rows,
 // every `period`-th stripe starting with stripe number `phase` (all rows by default). The mapper
 // gives each of its threads every n-th stripe of the grid (mapper.cpp).

@@ -80,6 +80,24 @@ constexpr int kStripeRows = 8;
 // Well under kSlots, so that a thread never runs out of ring while its totals wait to be posted.
 constexpr std::size_t kPostBatch = 16;
 
+// The batch path's hand-over from model to rule (SensorModel::evidenceRuns): each run of cells goes
+// straight to the rule (and is marked observed), with no Footprint between them. Cells whose update
+// waits for the reading's totals go to `deferred`.
+class RuleSink final : public RunSink {
+ public:
+  RuleSink(const UpdateRule& rule, Grid& grid, Footprint* deferred)
+      : rule_(rule), grid_(grid), deferred_(deferred) {}
+  void run(const EvidenceRun& run) override {
+    rule_.applyRun(run, grid_, deferred_);
+    grid_.markWritten(run.cell, run.count);
+  }
+
+ private:
+  const UpdateRule& rule_;
+  Grid& grid_;
+  Footprint* deferred_;
+};
+
 }  // namespace
 
 void Mapper::reset() {
@@ -212,9 +230,19 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
   const unsigned threads =
       n < kParallelMinimum || !model_->rasterisesRows() ? 1u : parallelThreads();
   if (threads == 1) {
+    const bool totals = rule_->needsTotals();
     for (std::size_t i = 0; i < n; ++i) {
       if (cancel && i % kCancelStride == 0 && cancel->load(std::memory_order_relaxed)) return false;
       scratch_.clear();
+      // Without an observer, the model's runs go straight to the rule; the cells that wait for the
+      // totals (addition's occupied arc) are applied once the reading's runs are all in.
+      RuleSink sink(*rule_, grid_, &scratch_);
+      if (!observer_ && model_->evidenceRuns(beams[i], grid_.spec(), *tables_, RowWindow{}, sink)) {
+        if (totals)
+          rule_->applyPart(scratch_, FootprintTotals{occupiedFixedPoint(scratch_)}, grid_);
+        ++readings_;
+        continue;
+      }
       model_->footprint(beams[i], grid_.spec(), *tables_, scratch_);
       applyFootprint(scratch_);
     }
@@ -348,8 +376,10 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
   if (!totals) {
     runThreads(threads, [&](unsigned k) {
       Footprint fp;
+      RuleSink sink(*rule_, grid_, nullptr);
       for (std::size_t i = 0; i < n; ++i) {
         if (stopping(i)) return halt(i);
+        if (model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], sink)) continue;
         fp.clear();
         model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
         rule_->apply(fp, grid_);
@@ -410,9 +440,14 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
           if (!waitPosted(applied)) return halt(applied);
           applyNext();
         }
+        // The part waiting for the totals: the whole part from footprintRows(), or, when the model
+        // hands its runs straight to the rule, the cells the rule deferred (applyNext marks them
+        // again, which changes nothing).
         Footprint& fp = ring[i % kSlots];
         fp.clear();
-        model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
+        RuleSink sink(*rule_, grid_, &fp);
+        if (!model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], sink))
+          model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
         mine.partial[i] = occupiedFixedPoint(fp);
         ++computed;
         if (computed - published < kPostBatch) continue;

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include "sonargrid/models/cone_raster.h"
 #include "sonargrid/models/lanes.h"
@@ -108,6 +109,80 @@ CellEvidence* coneRow(const Shape& shape, const ConeRow& row, CellEvidence* dst)
   return dst;
 }
 
+// Per-thread room for one row's values, side by side (coneRuns).
+struct ConeRowValues {
+  std::vector<float> empty, occupied, probability;
+  std::vector<std::int32_t> keep;
+  void reserve(std::size_t cells) {
+    const std::size_t n = cells + lanes::kWidth;  // the last lanes write past the row
+    if (empty.size() >= n) return;
+    empty.resize(n);
+    occupied.resize(n);
+    probability.resize(n);
+    keep.resize(n);
+  }
+};
+
+// coneRow() side by side instead of as CellEvidence: the same lanes, the same values, no 4 × 4
+// transpose; the row's cells go to `sink` as runs of the cells the reading writes (one run per row
+// unless a lane at the edge of a region writes nothing).
+template <class Shape>
+void coneRowRuns(const Shape& shape, const ConeRow& row, ConeRowValues& out, RunSink& sink) {
+  using lanes::Floats;
+  constexpr int W = lanes::kWidth;
+  // As in coneRow(), operation for operation.
+  const float hHi = static_cast<float>(row.heading);
+  const float hLo = static_cast<float>(row.heading - static_cast<double>(hHi));
+  static_assert(BeamTables::kPadding >= W - 1);
+  const lanes::Ints lane = {0, 1, 2, 3};
+  float* const empty = out.empty.data();
+  float* const occupied = out.occupied.data();
+  float* const probability = out.probability.data();
+  std::int32_t* const keep = out.keep.data();
+  lanes::Ints all = lanes::Ints{} - 1;  // every lane set
+  for (int k = 0; k < row.count; k += W) {
+    const BeamTables::Entry* e = row.entries + k;
+    const Floats lo = lanes::load(&e[0].distance), hi = lanes::load(&e[2].distance);
+    const Floats delta = __builtin_shufflevector(lo, hi, 0, 2, 4, 6);
+    const Floats bearing = __builtin_shufflevector(lo, hi, 1, 3, 5, 7);
+    const ConeValue<Floats> v = shape.value(delta, lanes::abs((bearing - hHi) - hLo));
+    std::memcpy(empty + k, &v.pE, sizeof v.pE);
+    std::memcpy(occupied + k, &v.pO, sizeof v.pO);
+    std::memcpy(probability + k, &v.p, sizeof v.p);
+    const lanes::Ints kept = v.occupied | v.empty | (lane >= row.count - k);
+    std::memcpy(keep + k, &kept, sizeof kept);
+    all &= kept;
+  }
+  if (lanes::all(all)) {
+    sink.run(EvidenceRun{row.cell, row.count, empty, occupied, probability});
+    return;
+  }
+  // A cell the reading says nothing about (rare, at the edge of a region) splits the row.
+  for (int k = 0; k < row.count;) {
+    if (keep[k] == 0) {
+      ++k;
+      continue;
+    }
+    int end = k + 1;
+    while (end < row.count && keep[end] != 0) ++end;
+    sink.run(EvidenceRun{row.cell + static_cast<std::uint32_t>(k), end - k, empty + k, occupied + k,
+                         probability + k});
+    k = end;
+  }
+}
+
+// The cells of coneFootprint(), as runs.
+template <class Shape>
+void coneRuns(const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid,
+              const BeamTables& tables, RowWindow window, RunSink& sink) {
+  if (!pb.active) return;
+  thread_local ConeRowValues values;
+  forEachConeRow(
+      beam.sensor, pb.reach, pb.halfAngle, grid, tables,
+      [&](std::size_t bound) { values.reserve(bound); },
+      [&](const ConeRow& row) { coneRowRuns(pb.shape, row, values, sink); }, window);
+}
+
 // The footprint of one reading: the cone's rows, evaluated in lanes.
 template <class Shape>
 void coneFootprint(const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid,
@@ -157,6 +232,12 @@ class ConeModel : public SensorModel {
                      RowWindow window, Footprint& out) const final {
     coneFootprint(self().template prepare<float>(beam.range, beam.maxRange), beam, grid, tables,
                   out, window);
+  }
+  bool evidenceRuns(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+                    RowWindow window, RunSink& sink) const final {
+    coneRuns(self().template prepare<float>(beam.range, beam.maxRange), beam, grid, tables, window,
+             sink);
+    return true;
   }
 
  private:

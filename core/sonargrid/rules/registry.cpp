@@ -70,3 +70,22 @@ Compatibility compatibility(const std::string& model, const std::string& rule) {
 }
 
 }  // namespace sg
+
+namespace sg {
+
+void UpdateRule::applyRun(const EvidenceRun& run, Grid& grid, Footprint* deferred) const {
+  thread_local Footprint part;
+  Footprint& out = needsTotals() ? *deferred : part;
+  if (!needsTotals()) part.clear();
+  for (int k = 0; k < run.count; ++k) {
+    out.cells.emplace_back();
+    CellEvidence& c = out.cells.back();
+    c.cell = run.cell + static_cast<std::uint32_t>(k);
+    c.empty = run.empty[k];
+    c.occupied = run.occupied[k];
+    c.probability = run.probability[k];
+  }
+  if (!needsTotals()) apply(part, grid);
+}
+
+}  // namespace sg
