@@ -62,17 +62,21 @@ struct Footprint {
   void clear() { cells.clear(); }
 };
 
-// A run of `count` consecutive cells of one grid row, from linear index `cell`, with the model's
-// three values side by side: what the cone models hand the rules directly on the mapper's batch
-// path (Mapper::integrateBeams without an observer), where a Footprint would be written and read
-// back once per cell. The cells and their values are those the Footprint would hold, in the same
-// order; every cell of a run is one the reading writes.
-struct EvidenceRun {
-  std::uint32_t cell;
-  int count;
-  const float* empty;
-  const float* occupied;
-  const float* probability;
+// A reading's cells as runs of consecutive cells of one grid row, with the model's three values
+// side by side: what the cone models hand the rules directly on the mapper's batch path
+// (Mapper::integrateBeams without an observer), where a Footprint would be written and read back
+// once per cell. Run r is cells r.cell .. r.cell + r.count − 1, their values at [r.first,
+// r.first + r.count) of the three arrays; the cells and values are those the Footprint would hold,
+// in the same order. The arrays are sized by the writer, with room for lanes past the last run.
+struct EvidenceRuns {
+  struct Run {
+    std::uint32_t cell;
+    int count;
+    std::uint32_t first;
+  };
+  std::vector<Run> runs;
+  std::vector<float, UninitialisedAllocator<float>> empty, occupied, probability;
+  void clear() { runs.clear(); }
 };
 
 // The grid rows a footprint is restricted to: those of [begin, end) in stripes of `stripe` rows,

@@ -80,24 +80,6 @@ constexpr int kStripeRows = 8;
 // Well under kSlots, so that a thread never runs out of ring while its totals wait to be posted.
 constexpr std::size_t kPostBatch = 16;
 
-// The batch path's hand-over from model to rule (SensorModel::evidenceRuns): each run of cells goes
-// straight to the rule (and is marked observed), with no Footprint between them. Cells whose update
-// waits for the reading's totals go to `deferred`.
-class RuleSink final : public RunSink {
- public:
-  RuleSink(const UpdateRule& rule, Grid& grid, Footprint* deferred)
-      : rule_(rule), grid_(grid), deferred_(deferred) {}
-  void run(const EvidenceRun& run) override {
-    rule_.applyRun(run, grid_, deferred_);
-    grid_.markWritten(run.cell, run.count);
-  }
-
- private:
-  const UpdateRule& rule_;
-  Grid& grid_;
-  Footprint* deferred_;
-};
-
 }  // namespace
 
 void Mapper::reset() {
@@ -128,6 +110,11 @@ Footprint Mapper::footprintOf(const Pose2D& robot, const Reading& reading) const
   Footprint fp;
   model_->footprint(beamOf(robot, reading), grid_.spec(), *tables_, fp);
   return fp;
+}
+
+void Mapper::applyRuns(const EvidenceRuns& runs, Footprint* deferred) {
+  rule_->applyRuns(runs, grid_, deferred);
+  for (const EvidenceRuns::Run& run : runs.runs) grid_.markWritten(run.cell, run.count);
 }
 
 void Mapper::applyFootprint(const Footprint& footprint) {
@@ -231,13 +218,15 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
       n < kParallelMinimum || !model_->rasterisesRows() ? 1u : parallelThreads();
   if (threads == 1) {
     const bool totals = rule_->needsTotals();
+    EvidenceRuns runs;
     for (std::size_t i = 0; i < n; ++i) {
       if (cancel && i % kCancelStride == 0 && cancel->load(std::memory_order_relaxed)) return false;
       scratch_.clear();
       // Without an observer, the model's runs go straight to the rule; the cells that wait for the
       // totals (addition's occupied arc) are applied once the reading's runs are all in.
-      RuleSink sink(*rule_, grid_, &scratch_);
-      if (!observer_ && model_->evidenceRuns(beams[i], grid_.spec(), *tables_, RowWindow{}, sink)) {
+      runs.clear();
+      if (!observer_ && model_->evidenceRuns(beams[i], grid_.spec(), *tables_, RowWindow{}, runs)) {
+        applyRuns(runs, &scratch_);
         if (totals)
           rule_->applyPart(scratch_, FootprintTotals{occupiedFixedPoint(scratch_)}, grid_);
         ++readings_;
@@ -376,10 +365,14 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
   if (!totals) {
     runThreads(threads, [&](unsigned k) {
       Footprint fp;
-      RuleSink sink(*rule_, grid_, nullptr);
+      EvidenceRuns runs;
       for (std::size_t i = 0; i < n; ++i) {
         if (stopping(i)) return halt(i);
-        if (model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], sink)) continue;
+        runs.clear();
+        if (model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], runs)) {
+          applyRuns(runs, nullptr);
+          continue;
+        }
         fp.clear();
         model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
         rule_->apply(fp, grid_);
@@ -415,6 +408,7 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
     runThreads(threads, [&](unsigned k) {
       Step& mine = state[k];
       std::vector<Footprint> ring(kSlots);
+      EvidenceRuns runs;
       std::size_t applied = 0;
       std::size_t computed = 0, published = 0;
       auto applyNext = [&] {
@@ -445,8 +439,10 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
         // again, which changes nothing).
         Footprint& fp = ring[i % kSlots];
         fp.clear();
-        RuleSink sink(*rule_, grid_, &fp);
-        if (!model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], sink))
+        runs.clear();
+        if (model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], runs))
+          applyRuns(runs, &fp);
+        else
           model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
         mine.partial[i] = occupiedFixedPoint(fp);
         ++computed;

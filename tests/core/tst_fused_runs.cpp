@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The batch path where the model hands its cells to the rule as runs (SensorModel::evidenceRuns,
-// UpdateRule::applyRun; no Footprint in between) against the footprint path, the oracle: every
+// UpdateRule::applyRuns; no Footprint in between) against the footprint path, the oracle: every
 // cone model × every probabilistic rule, on 1, 2 and 3 threads, must leave every plane of the grid
 // and every observed mark with the same bits.
 //

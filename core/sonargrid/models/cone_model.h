@@ -2,8 +2,10 @@
 #pragma once
 // The shape every cone model shares. A model's per-reading constants are a `Shape<S>` (S = double
 // or float) with one formula,
-//   template <class T> ConeValue<T> value(T delta, T absTheta) const,
-// for a point already known to be within the reach and the half-angle. T = double serves
+//   template <class T> [[gnu::always_inline]] ConeValue<T> value(T delta, T absTheta) const,
+// for a point already known to be within the reach and the half-angle (always inlined: the row
+// loops of coneRow() and coneRowRuns() both call it, and a call per group of lanes, its values
+// returned through memory, cost Konolige's batch re-map a third). T = double serves
 // evaluate() (the beam view); T = four float lanes serve footprint(), which evaluates the cone a
 // grid row at a time. Both are the same formula, so what the beam view shows is what the mapper
 // writes, to single precision (footprints are stored in floats anyway; footprint.h).
@@ -109,25 +111,13 @@ CellEvidence* coneRow(const Shape& shape, const ConeRow& row, CellEvidence* dst)
   return dst;
 }
 
-// Per-thread room for one row's values, side by side (coneRuns).
-struct ConeRowValues {
-  std::vector<float> empty, occupied, probability;
-  std::vector<std::int32_t> keep;
-  void reserve(std::size_t cells) {
-    const std::size_t n = cells + lanes::kWidth;  // the last lanes write past the row
-    if (empty.size() >= n) return;
-    empty.resize(n);
-    occupied.resize(n);
-    probability.resize(n);
-    keep.resize(n);
-  }
-};
-
-// coneRow() side by side instead of as CellEvidence: the same lanes, the same values, no 4 × 4
-// transpose; the row's cells go to `sink` as runs of the cells the reading writes (one run per row
-// unless a lane at the edge of a region writes nothing).
+// coneRow() side by side instead of as CellEvidence, appended to `out` from value index `next`
+// (which it advances): the same lanes, the same values, no 4 × 4 transpose. The row is one run
+// unless a lane at the edge of a region writes nothing. `out`'s arrays have room for kWidth − 1
+// values past the row, and `kept` for a mask per group of kWidth cells.
 template <class Shape>
-void coneRowRuns(const Shape& shape, const ConeRow& row, ConeRowValues& out, RunSink& sink) {
+void coneRowRuns(const Shape& shape, const ConeRow& row, EvidenceRuns& out, std::size_t& next,
+                 lanes::Ints* kept) {
   using lanes::Floats;
   constexpr int W = lanes::kWidth;
   // As in coneRow(), operation for operation.
@@ -135,10 +125,11 @@ void coneRowRuns(const Shape& shape, const ConeRow& row, ConeRowValues& out, Run
   const float hLo = static_cast<float>(row.heading - static_cast<double>(hHi));
   static_assert(BeamTables::kPadding >= W - 1);
   const lanes::Ints lane = {0, 1, 2, 3};
-  float* const empty = out.empty.data();
-  float* const occupied = out.occupied.data();
-  float* const probability = out.probability.data();
-  std::int32_t* const keep = out.keep.data();
+  float* const empty = out.empty.data() + next;
+  float* const occupied = out.occupied.data() + next;
+  float* const probability = out.probability.data() + next;
+  // `kept` has a lane mask per group: which lanes the reading writes (lanes past the row's end
+  // count as written: they are cut off).
   lanes::Ints all = lanes::Ints{} - 1;  // every lane set
   for (int k = 0; k < row.count; k += W) {
     const BeamTables::Entry* e = row.entries + k;
@@ -149,38 +140,55 @@ void coneRowRuns(const Shape& shape, const ConeRow& row, ConeRowValues& out, Run
     std::memcpy(empty + k, &v.pE, sizeof v.pE);
     std::memcpy(occupied + k, &v.pO, sizeof v.pO);
     std::memcpy(probability + k, &v.p, sizeof v.p);
-    const lanes::Ints kept = v.occupied | v.empty | (lane >= row.count - k);
-    std::memcpy(keep + k, &kept, sizeof kept);
-    all &= kept;
+    const lanes::Ints keep = v.occupied | v.empty | (lane >= row.count - k);
+    kept[k / W] = keep;
+    all &= keep;
   }
+  const auto first = static_cast<std::uint32_t>(next);
+  next += static_cast<std::size_t>(row.count);
   if (lanes::all(all)) {
-    sink.run(EvidenceRun{row.cell, row.count, empty, occupied, probability});
+    out.runs.push_back(EvidenceRuns::Run{row.cell, row.count, first});
     return;
   }
   // A cell the reading says nothing about (rare, at the edge of a region) splits the row.
-  for (int k = 0; k < row.count;) {
-    if (keep[k] == 0) {
-      ++k;
-      continue;
+  int begin = -1;  // of the run being extended
+  for (int k = 0; k < row.count; ++k) {
+    const bool keep = kept[k / W][k % W] != 0;
+    if (keep && begin < 0) begin = k;
+    if (!keep && begin >= 0) {
+      out.runs.push_back(EvidenceRuns::Run{row.cell + static_cast<std::uint32_t>(begin), k - begin,
+                                           first + static_cast<std::uint32_t>(begin)});
+      begin = -1;
     }
-    int end = k + 1;
-    while (end < row.count && keep[end] != 0) ++end;
-    sink.run(EvidenceRun{row.cell + static_cast<std::uint32_t>(k), end - k, empty + k, occupied + k,
-                         probability + k});
-    k = end;
+  }
+  if (begin >= 0) {
+    out.runs.push_back(EvidenceRuns::Run{row.cell + static_cast<std::uint32_t>(begin),
+                                         row.count - begin,
+                                         first + static_cast<std::uint32_t>(begin)});
   }
 }
 
 // The cells of coneFootprint(), as runs.
 template <class Shape>
 void coneRuns(const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid,
-              const BeamTables& tables, RowWindow window, RunSink& sink) {
+              const BeamTables& tables, RowWindow window, EvidenceRuns& out) {
   if (!pb.active) return;
-  thread_local ConeRowValues values;
+  std::size_t next = out.runs.empty() ? 0 : out.runs.back().first + out.runs.back().count;
+  thread_local std::vector<lanes::Ints> kept;  // one mask per group of a row
   forEachConeRow(
       beam.sensor, pb.reach, pb.halfAngle, grid, tables,
-      [&](std::size_t bound) { values.reserve(bound); },
-      [&](const ConeRow& row) { coneRowRuns(pb.shape, row, values, sink); }, window);
+      [&](std::size_t bound) {
+        // Leaves new values unwritten (UninitialisedAllocator); the last lanes of a row may write
+        // up to kWidth − 1 values past its end.
+        const std::size_t need = next + bound + lanes::kWidth;
+        if (out.empty.size() < need) {
+          out.empty.resize(need);
+          out.occupied.resize(need);
+          out.probability.resize(need);
+        }
+        if (kept.size() < bound / lanes::kWidth + 1) kept.resize(bound / lanes::kWidth + 1);
+      },
+      [&](const ConeRow& row) { coneRowRuns(pb.shape, row, out, next, kept.data()); }, window);
 }
 
 // The footprint of one reading: the cone's rows, evaluated in lanes.
@@ -234,9 +242,9 @@ class ConeModel : public SensorModel {
                   out, window);
   }
   bool evidenceRuns(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
-                    RowWindow window, RunSink& sink) const final {
+                    RowWindow window, EvidenceRuns& out) const final {
     coneRuns(self().template prepare<float>(beam.range, beam.maxRange), beam, grid, tables, window,
-             sink);
+             out);
     return true;
   }
 

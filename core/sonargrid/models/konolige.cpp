@@ -110,7 +110,7 @@ struct KonoligeShape {
   const NormalTable* normal = nullptr;
 
   template <class T>
-  ConeValue<T> value(T r, T t) const {
+  [[gnu::always_inline]] ConeValue<T> value(T r, T t) const {
     const T a = attenuation * (S(1) - lanes::min(T{} + S(1), attenuationSlope * r));
     const T g = a * (*lobe)(t);
     T lambda;

@@ -44,15 +44,6 @@ struct ModelValue {
   double probability = 0.5;
 };
 
-// Receives a reading's cells as runs (SensorModel::evidenceRuns).
-class RunSink {
- public:
-  virtual void run(const EvidenceRun& run) = 0;
-
- protected:
-  ~RunSink() = default;
-};
-
 class SensorModel {
  public:
   virtual ~SensorModel() = default;
@@ -80,13 +71,12 @@ class SensorModel {
   // filters it). The mapper splits a batch between threads by stripes of rows only for such a
   // model and maps the others (HIMM's axis line) on one thread (Mapper::integrateBeams).
   virtual bool rasterisesRows() const { return false; }
-  // The cells of footprintRows(), with the same values, handed to `sink` as runs of consecutive
-  // cells (each run's values valid only during the call), without a Footprint in between. Returns
-  // false, having called nothing, for a model that cannot (the default; HIMM): the caller then
-  // uses footprintRows().
+  // The cells of footprintRows(), with the same values, appended to `out` as runs of consecutive
+  // cells (footprint.h), without a Footprint in between. Returns false, leaving `out` as it was,
+  // for a model that cannot (the default; HIMM): the caller then uses footprintRows().
   virtual bool evidenceRuns(const Beam& /*beam*/, const GridSpec& /*grid*/,
                             const BeamTables& /*tables*/, RowWindow /*window*/,
-                            RunSink& /*sink*/) const {
+                            EvidenceRuns& /*out*/) const {
     return false;
   }
 };

@@ -45,22 +45,25 @@ void AdditionRule::applyPart(const Footprint& fp, const FootprintTotals& totals,
   }
 }
 
-void AdditionRule::applyRun(const EvidenceRun& run, Grid& grid, Footprint* deferred) const {
-  runs::additionEmpty(run, grid.cells<EmptyEvidence>(0) + run.cell);
+void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const {
+  runs::additionEmpty(runs, grid.cells<EmptyEvidence>(0));
   if (!normalise_) {
-    runs::additionOccupied(run, grid.cells<OccupiedEvidence>(1) + run.cell);
+    runs::additionOccupied(runs, grid.cells<OccupiedEvidence>(1));
     return;
   }
   // The occupied cells wait for the reading's total (applyPart). A cell of no occupied evidence
   // adds nothing to it (0 or −0 in fixed point is 0), so only the others are kept: the arc.
-  for (int k = 0; k < run.count; ++k) {
-    if (run.occupied[k] != 0.0f) {
-      deferred->cells.emplace_back();
-      CellEvidence& c = deferred->cells.back();
-      c.cell = run.cell + static_cast<std::uint32_t>(k);
-      c.empty = 0.0f;  // applied above
-      c.occupied = run.occupied[k];
-      c.probability = run.probability[k];
+  for (const EvidenceRuns::Run& run : runs.runs) {
+    const float* const occupied = runs.occupied.data() + run.first;
+    for (int k = 0; k < run.count; ++k) {
+      if (occupied[k] != 0.0f) {
+        deferred->cells.emplace_back();
+        CellEvidence& c = deferred->cells.back();
+        c.cell = run.cell + static_cast<std::uint32_t>(k);
+        c.empty = 0.0f;  // applied above
+        c.occupied = occupied[k];
+        c.probability = runs.probability[run.first + static_cast<std::size_t>(k)];
+      }
     }
   }
 }

@@ -46,8 +46,8 @@ void BayesRule::apply(const Footprint& fp, Grid& grid) const {
   }
 }
 
-void BayesRule::applyRun(const EvidenceRun& run, Grid& grid, Footprint* /*deferred*/) const {
-  runs::bayes(run, grid.cells<BayesCell>() + run.cell, input_ == Input::Likelihood);
+void BayesRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* /*deferred*/) const {
+  runs::bayes(runs, grid.cells<BayesCell>(), input_ == Input::Likelihood);
 }
 
 }  // namespace sg

@@ -32,9 +32,9 @@ void DempsterShaferRule::apply(const Footprint& fp, Grid& grid) const {
     cellrule::dempsterShafer(c.occupied, c.empty, cells[c.cell]);
 }
 
-void DempsterShaferRule::applyRun(const EvidenceRun& run, Grid& grid,
-                                  Footprint* /*deferred*/) const {
-  runs::dempsterShafer(run, grid.cells<DempsterShaferCell>() + run.cell);
+void DempsterShaferRule::applyRuns(const EvidenceRuns& runs, Grid& grid,
+                                   Footprint* /*deferred*/) const {
+  runs::dempsterShafer(runs, grid.cells<DempsterShaferCell>());
 }
 
 double DempsterShaferRule::occupancyOf(const DempsterShaferCell& c) const {

@@ -49,8 +49,8 @@ void LogOddsRule::apply(const Footprint& fp, Grid& grid) const {
     cellrule::logOdds(c.probability, invPrior, minOdds_, maxOdds_, cells[c.cell]);
 }
 
-void LogOddsRule::applyRun(const EvidenceRun& run, Grid& grid, Footprint* /*deferred*/) const {
-  runs::logOdds(run, grid.cells<LogOddsCell>() + run.cell, 1.0 / priorOdds_, minOdds_, maxOdds_);
+void LogOddsRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* /*deferred*/) const {
+  runs::logOdds(runs, grid.cells<LogOddsCell>(), 1.0 / priorOdds_, minOdds_, maxOdds_);
 }
 
 double LogOddsRule::nativeOf(const LogOddsCell& c) const {

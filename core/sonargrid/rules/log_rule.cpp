@@ -41,8 +41,8 @@ void LogRule::apply(const Footprint& fp, Grid& grid) const {
   for (const CellEvidence& c : fp.cells) cellrule::logProduct(c.empty, c.occupied, cells[c.cell]);
 }
 
-void LogRule::applyRun(const EvidenceRun& run, Grid& grid, Footprint* /*deferred*/) const {
-  runs::logProduct(run, grid.cells<LogCell>() + run.cell);
+void LogRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* /*deferred*/) const {
+  runs::logProduct(runs, grid.cells<LogCell>());
 }
 
 double LogRule::nativeOf(const LogCell& c) const {

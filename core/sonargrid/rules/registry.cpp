@@ -73,17 +73,20 @@ Compatibility compatibility(const std::string& model, const std::string& rule) {
 
 namespace sg {
 
-void UpdateRule::applyRun(const EvidenceRun& run, Grid& grid, Footprint* deferred) const {
+void UpdateRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const {
   thread_local Footprint part;
   Footprint& out = needsTotals() ? *deferred : part;
   if (!needsTotals()) part.clear();
-  for (int k = 0; k < run.count; ++k) {
-    out.cells.emplace_back();
-    CellEvidence& c = out.cells.back();
-    c.cell = run.cell + static_cast<std::uint32_t>(k);
-    c.empty = run.empty[k];
-    c.occupied = run.occupied[k];
-    c.probability = run.probability[k];
+  for (const EvidenceRuns::Run& run : runs.runs) {
+    for (int k = 0; k < run.count; ++k) {
+      const std::size_t v = run.first + static_cast<std::size_t>(k);
+      out.cells.emplace_back();
+      CellEvidence& c = out.cells.back();
+      c.cell = run.cell + static_cast<std::uint32_t>(k);
+      c.empty = runs.empty[v];
+      c.occupied = runs.occupied[v];
+      c.probability = runs.probability[v];
+    }
   }
   if (!needsTotals()) apply(part, grid);
 }
