@@ -2,7 +2,8 @@
 #pragma once
 // One cell's update by each rule, from the model's single-precision values: what the rules' apply()
 // (one CellEvidence at a time) and the run kernels' last cells (run_kernels.cpp, whose lanes repeat
-// these operations in this order) both do, so that the two paths give the same bits.
+// these operations in this order) both do, so that the two paths give the same bits. Always
+// inlined, as they were written in apply()'s loops before.
 
 #include <algorithm>
 
@@ -11,13 +12,14 @@
 namespace sg::cellrule {
 
 // Probability addition, paper 000 eq 8 (AdditionRule).
-inline void additionEmpty(float empty, EmptyEvidence& cell) {
+[[gnu::always_inline]] inline void additionEmpty(float empty, EmptyEvidence& cell) {
   if (empty > 0.0) {
     double& e = cell.emp;
     e = e + empty - e * empty;
   }
 }
-inline void additionOccupied(float occupied, double scale, OccupiedEvidence& cell) {
+[[gnu::always_inline]] inline void additionOccupied(float occupied, double scale,
+                                                    OccupiedEvidence& cell) {
   if (occupied > 0.0) {
     const double po = occupied * scale;
     double& o = cell.occ;
@@ -26,10 +28,10 @@ inline void additionOccupied(float occupied, double scale, OccupiedEvidence& cel
 }
 
 // Bayes (BayesRule): paper 001 maps evidence to [0, 0.5] (empty) and [0.5, 1] (occupied).
-inline double bayesEvidence(float empty, float occupied) {
+[[gnu::always_inline]] inline double bayesEvidence(float empty, float occupied) {
   return 0.5 + 0.5 * (static_cast<double>(occupied) - static_cast<double>(empty));
 }
-inline void bayes(double p, BayesCell& cell) {
+[[gnu::always_inline]] inline void bayes(double p, BayesCell& cell) {
   double& m = cell.p;
   const double num = p * m;
   const double den = num + (1.0 - p) * (1.0 - m);
@@ -40,7 +42,7 @@ inline void bayes(double p, BayesCell& cell) {
 
 // The log update's product (LogRule), held within [kLogLow, kLogHigh].
 inline constexpr double kLogLow = 1e-300, kLogHigh = 1e300;
-inline void logProduct(float empty, float occupied, LogCell& cell) {
+[[gnu::always_inline]] inline void logProduct(float empty, float occupied, LogCell& cell) {
   double& m = cell.product;
   m *= (1.0 - static_cast<double>(empty)) * (1.0 + static_cast<double>(occupied));
   if (m > kLogHigh)
@@ -52,8 +54,8 @@ inline void logProduct(float empty, float occupied, LogCell& cell) {
 // Clamped log-odds on the odds (LogOddsRule); the floor keeps a model's 0 or 1 from becoming an
 // infinite step.
 inline constexpr double kProbabilityFloor = 1e-6;
-inline void logOdds(float probability, double invPrior, double minOdds, double maxOdds,
-                    LogOddsCell& cell) {
+[[gnu::always_inline]] inline void logOdds(float probability, double invPrior, double minOdds,
+                                           double maxOdds, LogOddsCell& cell) {
   const double p =
       std::clamp(static_cast<double>(probability), kProbabilityFloor, 1.0 - kProbabilityFloor);
   double& o = cell.odds;
@@ -61,7 +63,8 @@ inline void logOdds(float probability, double invPrior, double minOdds, double m
 }
 
 // Dempster's rule of combination (DempsterShaferRule).
-inline void dempsterShafer(float occupied, float empty, DempsterShaferCell& m) {
+[[gnu::always_inline]] inline void dempsterShafer(float occupied, float empty,
+                                                  DempsterShaferCell& m) {
   double o = std::clamp(static_cast<double>(occupied), 0.0, 1.0);
   double e = std::clamp(static_cast<double>(empty), 0.0, 1.0);
   double& mo = m.occ;
