@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The batch path where the model hands its cells to the rule as runs (SensorModel::evidenceRuns,
 // UpdateRule::applyRuns; no Footprint in between) against the footprint path, the oracle: every
-// cone model × every probabilistic rule, on 1, 2 and 3 threads, must leave every plane of the grid
-// and every observed mark with the same bits.
+// cone model × every probabilistic rule, on 1, 2 and 3 threads, with the rows in eight lanes (on a
+// CPU with AVX2) and in four, must leave every plane of the grid and every observed mark with the
+// same bits.
 //
 // Where the expectations come from: the grid of the footprint path itself. A mapper with a
 // FootprintObserver maps through footprint() and UpdateRule::apply() one reading at a time (the
@@ -17,6 +18,7 @@
 
 #include "sonargrid/concurrency.h"
 #include "sonargrid/mapper.h"
+#include "sonargrid/registry_hooks.h"
 #include "sonargrid/rules/rule_classes.h"
 
 using namespace sg;
@@ -187,14 +189,22 @@ void TstFusedRuns::runsGiveTheFootprintPathsBits() {
   }
   QVERIFY(bottom && top && left && right);
 
-  for (const unsigned threads : {1u, 2u, 3u}) {
-    ScopedThreadCount count(threads);
-    Mapper runs(d.ring, smallGrid(), settings);
-    QVERIFY(runs.mapDataset(d));
-    QCOMPARE(runs.readingsIntegrated(), d.readingCount());
-    if (!sameGrid(settings.rule, oracle.storage(), runs.storage()))
-      QFAIL(qPrintable(
-          QString("%1 threads: the grid differs from the footprint path's").arg(threads)));
+  // Rows in eight lanes where the CPU has AVX2 (else four again), and in the baseline's four.
+  for (const bool wide : {true, false}) {
+    const bool previous = testing::useWideLanes(wide);
+    for (const unsigned threads : {1u, 2u, 3u}) {
+      ScopedThreadCount count(threads);
+      Mapper runs(d.ring, smallGrid(), settings);
+      QVERIFY(runs.mapDataset(d));
+      QCOMPARE(runs.readingsIntegrated(), d.readingCount());
+      if (!sameGrid(settings.rule, oracle.storage(), runs.storage())) {
+        testing::useWideLanes(previous);
+        QFAIL(qPrintable(QString("%1 threads, %2 lanes: the grid differs from the footprint path's")
+                             .arg(threads)
+                             .arg(wide ? "wide" : "four")));
+      }
+    }
+    testing::useWideLanes(previous);
   }
 }
 

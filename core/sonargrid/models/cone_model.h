@@ -111,49 +111,76 @@ CellEvidence* coneRow(const Shape& shape, const ConeRow& row, CellEvidence* dst)
   return dst;
 }
 
+// Vectors of W float and int lanes.
+template <int W>
+struct LaneTypes;
+template <>
+struct LaneTypes<lanes::kWidth> {
+  using Floats = lanes::Floats;
+  using Ints = lanes::Ints;
+};
+#ifdef SG_WIDE_LANES
+template <>
+struct LaneTypes<lanes::kWideWidth> {
+  using Floats = lanes::WideFloats<>;
+  using Ints = lanes::WideInts<>;
+};
+#endif
+
 // coneRow() side by side instead of as CellEvidence, appended to `out` from value index `next`
-// (which it advances): the same lanes, the same values, no 4 × 4 transpose. The row is one run
-// unless a lane at the edge of a region writes nothing. `out`'s arrays have room for kWidth − 1
-// values past the row, and `kept` for a mask per group of kWidth cells.
-template <class Shape>
-void coneRowRuns(const Shape& shape, const ConeRow& row, EvidenceRuns& out, std::size_t& next,
-                 lanes::Ints* kept) {
-  using lanes::Floats;
-  constexpr int W = lanes::kWidth;
+// (which it advances): the same formula per lane, the same values, no 4 × 4 transpose; in W = 4
+// lanes, or 8 (coneRowRunsWide). The row is one run unless a lane at the edge of a region writes
+// nothing. `out`'s arrays have room for W − 1 values past the row, and `kept` for a mask per cell
+// and W − 1 more.
+template <class Shape, int W>
+[[gnu::always_inline]] inline void coneRowRuns(const Shape& shape, const ConeRow& row,
+                                               EvidenceRuns& out, std::size_t& next,
+                                               std::int32_t* kept) {
   // As in coneRow(), operation for operation.
   const float hHi = static_cast<float>(row.heading);
   const float hLo = static_cast<float>(row.heading - static_cast<double>(hHi));
   static_assert(BeamTables::kPadding >= W - 1);
-  const lanes::Ints lane = {0, 1, 2, 3};
   float* const empty = out.empty.data() + next;
   float* const occupied = out.occupied.data() + next;
   float* const probability = out.probability.data() + next;
-  // `kept` has a lane mask per group: which lanes the reading writes (lanes past the row's end
-  // count as written: they are cut off).
-  lanes::Ints all = lanes::Ints{} - 1;  // every lane set
+  using F = typename LaneTypes<W>::Floats;
+  using I = typename LaneTypes<W>::Ints;
+  I lane;
+  for (int j = 0; j < W; ++j) lane[j] = j;
+  I every = I{} - 1;  // every lane set
   for (int k = 0; k < row.count; k += W) {
     const BeamTables::Entry* e = row.entries + k;
-    const Floats lo = lanes::load(&e[0].distance), hi = lanes::load(&e[2].distance);
-    const Floats delta = __builtin_shufflevector(lo, hi, 0, 2, 4, 6);
-    const Floats bearing = __builtin_shufflevector(lo, hi, 1, 3, 5, 7);
-    const ConeValue<Floats> v = shape.value(delta, lanes::abs((bearing - hHi) - hLo));
+    F lo, hi;
+    std::memcpy(&lo, &e[0].distance, sizeof lo);
+    std::memcpy(&hi, &e[W / 2].distance, sizeof hi);
+    F delta, bearing;
+    if constexpr (W == 4) {
+      delta = __builtin_shufflevector(lo, hi, 0, 2, 4, 6);
+      bearing = __builtin_shufflevector(lo, hi, 1, 3, 5, 7);
+    } else {
+      delta = __builtin_shufflevector(lo, hi, 0, 2, 4, 6, 8, 10, 12, 14);
+      bearing = __builtin_shufflevector(lo, hi, 1, 3, 5, 7, 9, 11, 13, 15);
+    }
+    const ConeValue<F> v = shape.value(delta, lanes::abs((bearing - hHi) - hLo));
     std::memcpy(empty + k, &v.pE, sizeof v.pE);
     std::memcpy(occupied + k, &v.pO, sizeof v.pO);
     std::memcpy(probability + k, &v.p, sizeof v.p);
-    const lanes::Ints keep = v.occupied | v.empty | (lane >= row.count - k);
-    kept[k / W] = keep;
-    all &= keep;
+    // Which lanes the reading writes (lanes past the row's end count as written: cut off).
+    const I keep = v.occupied | v.empty | (lane >= row.count - k);
+    std::memcpy(kept + k, &keep, sizeof keep);
+    every &= keep;
   }
+  const bool all = lanes::all(every);
   const auto first = static_cast<std::uint32_t>(next);
   next += static_cast<std::size_t>(row.count);
-  if (lanes::all(all)) {
+  if (all) {
     out.runs.push_back(EvidenceRuns::Run{row.cell, row.count, first});
     return;
   }
   // A cell the reading says nothing about (rare, at the edge of a region) splits the row.
   int begin = -1;  // of the run being extended
   for (int k = 0; k < row.count; ++k) {
-    const bool keep = kept[k / W][k % W] != 0;
+    const bool keep = kept[k] != 0;
     if (keep && begin < 0) begin = k;
     if (!keep && begin >= 0) {
       out.runs.push_back(EvidenceRuns::Run{row.cell + static_cast<std::uint32_t>(begin), k - begin,
@@ -168,27 +195,52 @@ void coneRowRuns(const Shape& shape, const ConeRow& row, EvidenceRuns& out, std:
   }
 }
 
+#ifdef SG_WIDE_LANES
+// coneRowRuns() in eight lanes, built for AVX2 (without FMA, so every lane does what the four-lane
+// build does); called only where the CPU has AVX2 (coneRuns).
+template <class Shape>
+__attribute__((target("avx2"))) void coneRowRunsWide(const Shape& shape, const ConeRow& row,
+                                                     EvidenceRuns& out, std::size_t& next,
+                                                     std::int32_t* kept) {
+  coneRowRuns<Shape, lanes::kWideWidth>(shape, row, out, next, kept);
+}
+#endif
+
+// Whether coneRuns() evaluates rows in eight lanes: where the CPU has AVX2, unless a test asked
+// for four (testing::useWideLanes, registry_hooks.h).
+bool wideConeLanes();
+
 // The cells of coneFootprint(), as runs.
 template <class Shape>
 void coneRuns(const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid,
               const BeamTables& tables, RowWindow window, EvidenceRuns& out) {
   if (!pb.active) return;
   std::size_t next = out.runs.empty() ? 0 : out.runs.back().first + out.runs.back().count;
-  thread_local std::vector<lanes::Ints> kept;  // one mask per group of a row
+  constexpr int kMaxWidth = 8;
+  thread_local std::vector<std::int32_t> kept;  // a mask per cell of a row
+#ifdef SG_WIDE_LANES
+  const bool wide = wideConeLanes();
+#endif
   forEachConeRow(
       beam.sensor, pb.reach, pb.halfAngle, grid, tables,
       [&](std::size_t bound) {
         // Leaves new values unwritten (UninitialisedAllocator); the last lanes of a row may write
-        // up to kWidth − 1 values past its end.
-        const std::size_t need = next + bound + lanes::kWidth;
+        // up to kMaxWidth − 1 values past its end.
+        const std::size_t need = next + bound + kMaxWidth;
         if (out.empty.size() < need) {
           out.empty.resize(need);
           out.occupied.resize(need);
           out.probability.resize(need);
         }
-        if (kept.size() < bound / lanes::kWidth + 1) kept.resize(bound / lanes::kWidth + 1);
+        if (kept.size() < bound + kMaxWidth) kept.resize(bound + kMaxWidth);
       },
-      [&](const ConeRow& row) { coneRowRuns(pb.shape, row, out, next, kept.data()); }, window);
+      [&](const ConeRow& row) {
+#ifdef SG_WIDE_LANES
+        if (wide) return coneRowRunsWide(pb.shape, row, out, next, kept.data());
+#endif
+        coneRowRuns<Shape, lanes::kWidth>(pb.shape, row, out, next, kept.data());
+      },
+      window);
 }
 
 // The footprint of one reading: the cone's rows, evaluated in lanes.
