@@ -19,8 +19,9 @@ class BeamTables {
   };
 
   static constexpr int kDefaultSubdivisions = 4;
-  // Entries past the end of any row that may be read (and ignored): lanes load whole groups.
-  static constexpr int kPadding = 3;
+  // Entries past the end of any row that may be read (and ignored): lanes load whole groups (of
+  // up to eight, cone_model.h).
+  static constexpr int kPadding = 7;
 
   BeamTables(double cellSize, int radiusCells, int subdivisions = kDefaultSubdivisions);
 

@@ -62,6 +62,23 @@ struct Footprint {
   void clear() { cells.clear(); }
 };
 
+// A reading's cells as runs of consecutive cells of one grid row, with the model's three values
+// side by side: what the cone models hand the rules directly on the mapper's batch path
+// (Mapper::integrateBeams without an observer), where a Footprint would be written and read back
+// once per cell. Run r is cells r.cell .. r.cell + r.count − 1, their values at [r.first,
+// r.first + r.count) of the three arrays; the cells and values are those the Footprint would hold,
+// in the same order. The arrays are sized by the writer, with room for lanes past the last run.
+struct EvidenceRuns {
+  struct Run {
+    std::uint32_t cell;
+    int count;
+    std::uint32_t first;
+  };
+  std::vector<Run> runs;
+  std::vector<float, UninitialisedAllocator<float>> empty, occupied, probability;
+  void clear() { runs.clear(); }
+};
+
 // The grid rows a footprint is restricted to: those of [begin, end) in stripes of `stripe` rows,
 // every `period`-th stripe starting with stripe number `phase` (all rows by default). The mapper
 // gives each of its threads every n-th stripe of the grid (mapper.cpp).

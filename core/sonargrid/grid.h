@@ -166,6 +166,11 @@ class Grid {
   // markWritten() of one cell.
   void markWritten(std::uint32_t cell) { marks_[cell] = kObserved | kWritten; }
 
+  // markWritten() for `count` consecutive cells from `cell` (a run, footprint.h).
+  void markWritten(std::uint32_t cell, int count) {
+    std::memset(marks_.data() + cell, kObserved | kWritten, static_cast<std::size_t>(count));
+  }
+
   // Whether every cell of the world box [lo, hi] is in the grid.
   bool covers(const Position& lo, const Position& hi) const;
   // Grows the grid, if it must, until it covers the world box [lo, hi], with slack: a side that

@@ -112,6 +112,11 @@ Footprint Mapper::footprintOf(const Pose2D& robot, const Reading& reading) const
   return fp;
 }
 
+void Mapper::applyRuns(const EvidenceRuns& runs, Footprint* deferred) {
+  rule_->applyRuns(runs, grid_, deferred);
+  for (const EvidenceRuns::Run& run : runs.runs) grid_.markWritten(run.cell, run.count);
+}
+
 void Mapper::applyFootprint(const Footprint& footprint) {
   rule_->apply(footprint, grid_);
   if (observer_) observer_->observe(footprint);
@@ -223,9 +228,21 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
       }
       return true;
     }
+    const bool totals = rule_->needsTotals();
+    EvidenceRuns runs;
     for (std::size_t i = 0; i < n; ++i) {
       if (cancel && i % kCancelStride == 0 && cancel->load(std::memory_order_relaxed)) return false;
       scratch_.clear();
+      // Without an observer, the model's runs go straight to the rule; the cells that wait for the
+      // totals (addition's occupied arc) are applied once the reading's runs are all in.
+      runs.clear();
+      if (!observer_ && model_->evidenceRuns(beams[i], grid_.spec(), *tables_, RowWindow{}, runs)) {
+        applyRuns(runs, &scratch_);
+        if (totals)
+          rule_->applyPart(scratch_, FootprintTotals{occupiedFixedPoint(scratch_)}, grid_);
+        ++readings_;
+        continue;
+      }
       model_->footprint(beams[i], grid_.spec(), *tables_, scratch_);
       applyFootprint(scratch_);
     }
@@ -359,8 +376,14 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
   if (!totals) {
     runThreads(threads, [&](unsigned k) {
       Footprint fp;
+      EvidenceRuns runs;
       for (std::size_t i = 0; i < n; ++i) {
         if (stopping(i)) return halt(i);
+        runs.clear();
+        if (model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], runs)) {
+          applyRuns(runs, nullptr);
+          continue;
+        }
         fp.clear();
         model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
         rule_->apply(fp, grid_);
@@ -396,6 +419,7 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
     runThreads(threads, [&](unsigned k) {
       Step& mine = state[k];
       std::vector<Footprint> ring(kSlots);
+      EvidenceRuns runs;
       std::size_t applied = 0;
       std::size_t computed = 0, published = 0;
       auto applyNext = [&] {
@@ -421,9 +445,16 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
           if (!waitPosted(applied)) return halt(applied);
           applyNext();
         }
+        // The part waiting for the totals: the whole part from footprintRows(), or, when the model
+        // hands its runs straight to the rule, the cells the rule deferred (applyNext marks them
+        // again, which changes nothing).
         Footprint& fp = ring[i % kSlots];
         fp.clear();
-        model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
+        runs.clear();
+        if (model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], runs))
+          applyRuns(runs, &fp);
+        else
+          model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
         mine.partial[i] = occupiedFixedPoint(fp);
         ++computed;
         if (computed - published < kPostBatch) continue;

@@ -21,4 +21,9 @@ using UpdateRuleWrapper = std::function<std::unique_ptr<UpdateRule>(std::unique_
 void wrapSensorModels(SensorModelWrapper wrap);
 void wrapUpdateRules(UpdateRuleWrapper wrap);
 
+// Whether the cone models may evaluate their rows in eight lanes where the CPU has AVX2 (the
+// default, true) or must use the baseline's four (false), so that a test on an AVX2 machine checks
+// both. Set it only while no mapper is mapping. Returns the previous setting.
+bool useWideLanes(bool allowed);
+
 }  // namespace sg::testing

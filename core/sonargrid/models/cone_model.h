@@ -2,8 +2,10 @@
 #pragma once
 // The shape every cone model shares. A model's per-reading constants are a `Shape<S>` (S = double
 // or float) with one formula,
-//   template <class T> ConeValue<T> value(T delta, T absTheta) const,
-// for a point already known to be within the reach and the half-angle. T = double serves
+//   template <class T> [[gnu::always_inline]] ConeValue<T> value(T delta, T absTheta) const,
+// for a point already known to be within the reach and the half-angle (always inlined: the row
+// loops of coneRow() and coneRowRuns() both call it, and a call per group of lanes, its values
+// returned through memory, cost Konolige's batch re-map a third). T = double serves
 // evaluate() (the beam view); T = four float lanes serve footprint(), which evaluates the cone a
 // grid row at a time. Both are the same formula, so what the beam view shows is what the mapper
 // writes, to single precision (footprints are stored in floats anyway; footprint.h).
@@ -12,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 #include "sonargrid/models/cone_raster.h"
 #include "sonargrid/models/lanes.h"
@@ -108,6 +111,138 @@ CellEvidence* coneRow(const Shape& shape, const ConeRow& row, CellEvidence* dst)
   return dst;
 }
 
+// Vectors of W float and int lanes.
+template <int W>
+struct LaneTypes;
+template <>
+struct LaneTypes<lanes::kWidth> {
+  using Floats = lanes::Floats;
+  using Ints = lanes::Ints;
+};
+#ifdef SG_WIDE_LANES
+template <>
+struct LaneTypes<lanes::kWideWidth> {
+  using Floats = lanes::WideFloats<>;
+  using Ints = lanes::WideInts<>;
+};
+#endif
+
+// coneRow() side by side instead of as CellEvidence, appended to `out` from value index `next`
+// (which it advances): the same formula per lane, the same values, no 4 × 4 transpose; in W = 4
+// lanes, or 8 (coneRowRunsWide). The row is one run unless a lane at the edge of a region writes
+// nothing. `out`'s arrays have room for W − 1 values past the row, and `kept` for a mask per cell
+// and W − 1 more.
+template <class Shape, int W>
+[[gnu::always_inline]] inline void coneRowRuns(const Shape& shape, const ConeRow& row,
+                                               EvidenceRuns& out, std::size_t& next,
+                                               std::int32_t* kept) {
+  // As in coneRow(), operation for operation.
+  const float hHi = static_cast<float>(row.heading);
+  const float hLo = static_cast<float>(row.heading - static_cast<double>(hHi));
+  static_assert(BeamTables::kPadding >= W - 1);
+  float* const empty = out.empty.data() + next;
+  float* const occupied = out.occupied.data() + next;
+  float* const probability = out.probability.data() + next;
+  using F = typename LaneTypes<W>::Floats;
+  using I = typename LaneTypes<W>::Ints;
+  I lane;
+  for (int j = 0; j < W; ++j) lane[j] = j;
+  I every = I{} - 1;  // every lane set
+  for (int k = 0; k < row.count; k += W) {
+    const BeamTables::Entry* e = row.entries + k;
+    F lo, hi;
+    std::memcpy(&lo, &e[0].distance, sizeof lo);
+    std::memcpy(&hi, &e[W / 2].distance, sizeof hi);
+    F delta, bearing;
+    if constexpr (W == 4) {
+      delta = __builtin_shufflevector(lo, hi, 0, 2, 4, 6);
+      bearing = __builtin_shufflevector(lo, hi, 1, 3, 5, 7);
+    } else {
+      delta = __builtin_shufflevector(lo, hi, 0, 2, 4, 6, 8, 10, 12, 14);
+      bearing = __builtin_shufflevector(lo, hi, 1, 3, 5, 7, 9, 11, 13, 15);
+    }
+    const ConeValue<F> v = shape.value(delta, lanes::abs((bearing - hHi) - hLo));
+    std::memcpy(empty + k, &v.pE, sizeof v.pE);
+    std::memcpy(occupied + k, &v.pO, sizeof v.pO);
+    std::memcpy(probability + k, &v.p, sizeof v.p);
+    // Which lanes the reading writes (lanes past the row's end count as written: cut off).
+    const I keep = v.occupied | v.empty | (lane >= row.count - k);
+    std::memcpy(kept + k, &keep, sizeof keep);
+    every &= keep;
+  }
+  const bool all = lanes::all(every);
+  const auto first = static_cast<std::uint32_t>(next);
+  next += static_cast<std::size_t>(row.count);
+  if (all) {
+    out.runs.push_back(EvidenceRuns::Run{row.cell, row.count, first});
+    return;
+  }
+  // A cell the reading says nothing about (rare, at the edge of a region) splits the row.
+  int begin = -1;  // of the run being extended
+  for (int k = 0; k < row.count; ++k) {
+    const bool keep = kept[k] != 0;
+    if (keep && begin < 0) begin = k;
+    if (!keep && begin >= 0) {
+      out.runs.push_back(EvidenceRuns::Run{row.cell + static_cast<std::uint32_t>(begin), k - begin,
+                                           first + static_cast<std::uint32_t>(begin)});
+      begin = -1;
+    }
+  }
+  if (begin >= 0) {
+    out.runs.push_back(EvidenceRuns::Run{row.cell + static_cast<std::uint32_t>(begin),
+                                         row.count - begin,
+                                         first + static_cast<std::uint32_t>(begin)});
+  }
+}
+
+#ifdef SG_WIDE_LANES
+// coneRowRuns() in eight lanes, built for AVX2 (without FMA, so every lane does what the four-lane
+// build does); called only where the CPU has AVX2 (coneRuns).
+template <class Shape>
+__attribute__((target("avx2"))) void coneRowRunsWide(const Shape& shape, const ConeRow& row,
+                                                     EvidenceRuns& out, std::size_t& next,
+                                                     std::int32_t* kept) {
+  coneRowRuns<Shape, lanes::kWideWidth>(shape, row, out, next, kept);
+}
+#endif
+
+// Whether coneRuns() evaluates rows in eight lanes: where the CPU has AVX2, unless a test asked
+// for four (testing::useWideLanes, registry_hooks.h).
+bool wideConeLanes();
+
+// The cells of coneFootprint(), as runs.
+template <class Shape>
+void coneRuns(const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid,
+              const BeamTables& tables, RowWindow window, EvidenceRuns& out) {
+  if (!pb.active) return;
+  std::size_t next = out.runs.empty() ? 0 : out.runs.back().first + out.runs.back().count;
+  constexpr int kMaxWidth = 8;
+  thread_local std::vector<std::int32_t> kept;  // a mask per cell of a row
+#ifdef SG_WIDE_LANES
+  const bool wide = wideConeLanes();
+#endif
+  forEachConeRow(
+      beam.sensor, pb.reach, pb.halfAngle, grid, tables,
+      [&](std::size_t bound) {
+        // Leaves new values unwritten (UninitialisedAllocator); the last lanes of a row may write
+        // up to kMaxWidth − 1 values past its end.
+        const std::size_t need = next + bound + kMaxWidth;
+        if (out.empty.size() < need) {
+          out.empty.resize(need);
+          out.occupied.resize(need);
+          out.probability.resize(need);
+        }
+        if (kept.size() < bound + kMaxWidth) kept.resize(bound + kMaxWidth);
+      },
+      [&](const ConeRow& row) {
+#ifdef SG_WIDE_LANES
+        if (wide) return coneRowRunsWide(pb.shape, row, out, next, kept.data());
+#endif
+        coneRowRuns<Shape, lanes::kWidth>(pb.shape, row, out, next, kept.data());
+      },
+      window);
+}
+
 // The footprint of one reading: the cone's rows, evaluated in lanes.
 template <class Shape>
 void coneFootprint(const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid,
@@ -157,6 +292,12 @@ class ConeModel : public SensorModel {
                      RowWindow window, Footprint& out) const final {
     coneFootprint(self().template prepare<float>(beam.range, beam.maxRange), beam, grid, tables,
                   out, window);
+  }
+  bool evidenceRuns(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+                    RowWindow window, EvidenceRuns& out) const final {
+    coneRuns(self().template prepare<float>(beam.range, beam.maxRange), beam, grid, tables, window,
+             out);
+    return true;
   }
 
  private:

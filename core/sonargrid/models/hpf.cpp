@@ -22,7 +22,7 @@ struct HpfShape {
   S invHalfAngle;  // 2 / ω
 
   template <class T>
-  ConeValue<T> value(T delta, T absTheta) const {
+  [[gnu::always_inline]] ConeValue<T> value(T delta, T absTheta) const {
     const T t = absTheta * invHalfAngle;
     const T angular = S(1) - t * t;  // Ea = Oa = 1 − (2θ/ω)², eqs 3 and 6
     const T dOcc = (delta - range) * invEpsilon;

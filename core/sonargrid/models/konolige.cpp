@@ -66,7 +66,8 @@ class NormalTable {
     pdf = pdf_[k] + w * (pdf_[k + 1] - pdf_[k]);
     cdf = cdf_[k] + w * (cdf_[k + 1] - cdf_[k]);
   }
-  void operator()(lanes::Floats z, lanes::Floats& pdf, lanes::Floats& cdf) const {
+  [[gnu::always_inline]] void operator()(lanes::Floats z, lanes::Floats& pdf,
+                                         lanes::Floats& cdf) const {
     // z · kScale is exact (a power of two), and so is its distance w from the sample below it: in
     // float, (z + kZMax) · kScale would round w to 2.4e-4 of an interval, and λ multiplies φ by
     // 1/(d F), some 500.
@@ -87,6 +88,18 @@ class NormalTable {
     pdf = p0 + w * p1;
     cdf = c0 + w * c1;
   }
+#ifdef SG_WIDE_LANES
+  // Eight lanes as two fours: the same operations per lane.
+  template <class V>
+  [[gnu::always_inline]] void operator()(
+      V z, V& pdf, V& cdf) const requires std::is_same_v<V, lanes::WideFloats<>> {
+    lanes::Floats p0, c0, p1, c1;
+    (*this)(lanes::low(z), p0, c0);
+    (*this)(lanes::high(z), p1, c1);
+    pdf = lanes::join(p0, p1);
+    cdf = lanes::join(c0, c1);
+  }
+#endif
 
  private:
   static constexpr int kIntervals = 4096;
@@ -110,7 +123,7 @@ struct KonoligeShape {
   const NormalTable* normal = nullptr;
 
   template <class T>
-  ConeValue<T> value(T r, T t) const {
+  [[gnu::always_inline]] ConeValue<T> value(T r, T t) const {
     const T a = attenuation * (S(1) - lanes::min(T{} + S(1), attenuationSlope * r));
     const T g = a * (*lobe)(t);
     T lambda;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 namespace sg::lanes {
 
@@ -18,15 +19,15 @@ constexpr int kWidth = 4;
 
 // std::max / std::min / std::clamp, for a double or per lane.
 template <class T>
-T max(T a, T b) {
+[[gnu::always_inline]] inline T max(T a, T b) {
   return a < b ? b : a;
 }
 template <class T>
-T min(T a, T b) {
+[[gnu::always_inline]] inline T min(T a, T b) {
   return b < a ? b : a;
 }
 template <class T>
-T clamp(T v, T lo, T hi) {
+[[gnu::always_inline]] inline T clamp(T v, T lo, T hi) {
   return min(max(v, lo), hi);
 }
 inline double abs(double x) {
@@ -61,5 +62,42 @@ inline void transpose(Floats& a, Floats& b, Floats& c, Floats& d) {
   c = __builtin_shufflevector(t2, t3, 0, 1, 4, 5);
   d = __builtin_shufflevector(t2, t3, 2, 3, 6, 7);
 }
+
+// Eight lanes, for the cone models' rows on a CPU with AVX2 (cone_model.h, GCC on x86-64 only:
+// Clang refuses 32-byte vectors between functions built for the baseline even when inlined).
+// Templates, so that only a file that evaluates a row in eight lanes instantiates them (GCC notes
+// the ABI of 32-byte vector arguments in every function it compiles for the baseline).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define SG_WIDE_LANES 1
+constexpr int kWideWidth = 8;
+template <class = void>
+using WideFloats = float __attribute__((vector_size(32)));
+template <class = void>
+using WideInts = std::int32_t __attribute__((vector_size(32)));
+
+template <class V>
+[[gnu::always_inline]] inline V abs(V x) requires std::is_same_v<V, WideFloats<>> {
+  return reinterpret_cast<V>(reinterpret_cast<WideInts<>>(x) & 0x7fffffff);
+}
+template <class V>
+[[gnu::always_inline]] inline bool all(V m) requires std::is_same_v<V, WideInts<>> {
+  std::uint64_t w[4];
+  std::memcpy(w, &m, sizeof w);
+  return (w[0] & w[1] & w[2] & w[3]) == ~std::uint64_t{0};
+}
+// The low and high four lanes, and back.
+template <class V>
+[[gnu::always_inline]] inline Floats low(V x) requires std::is_same_v<V, WideFloats<>> {
+  return __builtin_shufflevector(x, x, 0, 1, 2, 3);
+}
+template <class V>
+[[gnu::always_inline]] inline Floats high(V x) requires std::is_same_v<V, WideFloats<>> {
+  return __builtin_shufflevector(x, x, 4, 5, 6, 7);
+}
+template <class V = WideFloats<>>
+[[gnu::always_inline]] inline V join(Floats a, Floats b) {
+  return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
+}
+#endif
 
 }  // namespace sg::lanes

@@ -30,7 +30,7 @@ struct MurphyShape {
   S halfInvR, halfInvBeta;  // 1/(2R), 1/(2β): no division per cell
 
   template <class T>
-  ConeValue<T> value(T r, T a) const {
+  [[gnu::always_inline]] ConeValue<T> value(T r, T a) const {
     // v <= 1 as r, a >= 0, so only its lower clamp can bind (and v · Max_occ <= Max_occ).
     const T v = lanes::max(T{}, (R - r) * halfInvR + (beta - a) * halfInvBeta);
     const auto occupied = r >= occupiedLo && r <= occupiedHi;

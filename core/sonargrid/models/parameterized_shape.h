@@ -22,7 +22,7 @@ struct ParameterizedShape {
   S tentSlope;  // (P4 − 0.5 − P2) / P3
 
   template <class T>
-  ConeValue<T> value(T r, T a) const {
+  [[gnu::always_inline]] ConeValue<T> value(T r, T a) const {
     const auto empty = r < emptyBelow;
     // Region II rises from P1; Region I is a tent, 0.5 + P2 at |r − s| = P3 and P4 at r = s.
     const T axis = empty ? p1 + emptySlope * r : p4 - tentSlope * lanes::abs(r - s);

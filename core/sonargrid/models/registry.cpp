@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include <atomic>
 #include <stdexcept>
 
 #include "sonargrid/models/cone_model.h"
@@ -15,6 +16,23 @@ testing::SensorModelWrapper& modelWrapper() {
 
 void testing::wrapSensorModels(SensorModelWrapper wrap) {
   modelWrapper() = std::move(wrap);
+}
+
+namespace {
+std::atomic<bool> wideLanesAllowed{true};
+}  // namespace
+
+bool testing::useWideLanes(bool allowed) {
+  return wideLanesAllowed.exchange(allowed);
+}
+
+bool wideConeLanes() {
+#ifdef SG_WIDE_LANES
+  static const bool cpu = __builtin_cpu_supports("avx2");
+  return cpu && wideLanesAllowed.load(std::memory_order_relaxed);
+#else
+  return false;
+#endif
 }
 
 ParameterSpec noEchoParameter(const std::string& freeMeaning) {

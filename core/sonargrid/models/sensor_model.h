@@ -82,6 +82,14 @@ class SensorModel {
                                const UpdateRule& /*rule*/, Grid& /*grid*/) const {
     return false;
   }
+  // The cells of footprintRows(), with the same values, appended to `out` as runs of consecutive
+  // cells (footprint.h), without a Footprint in between. Returns false, leaving `out` as it was,
+  // for a model that cannot (the default; HIMM): the caller then uses footprintRows().
+  virtual bool evidenceRuns(const Beam& /*beam*/, const GridSpec& /*grid*/,
+                            const BeamTables& /*tables*/, RowWindow /*window*/,
+                            EvidenceRuns& /*out*/) const {
+    return false;
+  }
 };
 
 // The registry: one place that knows every model.

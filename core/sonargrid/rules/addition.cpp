@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
+#include "sonargrid/rules/run_kernels.h"
 
 namespace sg {
 
@@ -38,14 +40,30 @@ void AdditionRule::applyPart(const Footprint& fp, const FootprintTotals& totals,
   EmptyEvidence* const emp = grid.cells<EmptyEvidence>(0);
   OccupiedEvidence* const occ = grid.cells<OccupiedEvidence>(1);
   for (const CellEvidence& c : fp.cells) {
-    if (c.empty > 0.0) {
-      double& e = emp[c.cell].emp;
-      e = e + c.empty - e * c.empty;
-    }
-    if (c.occupied > 0.0) {
-      const double po = c.occupied * scale;
-      double& o = occ[c.cell].occ;
-      o = o + po - o * po;
+    cellrule::additionEmpty(c.empty, emp[c.cell]);
+    cellrule::additionOccupied(c.occupied, scale, occ[c.cell]);
+  }
+}
+
+void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const {
+  runs::additionEmpty(runs, grid.cells<EmptyEvidence>(0));
+  if (!normalise_) {
+    runs::additionOccupied(runs, grid.cells<OccupiedEvidence>(1));
+    return;
+  }
+  // The occupied cells wait for the reading's total (applyPart). A cell of no occupied evidence
+  // adds nothing to it (0 or −0 in fixed point is 0), so only the others are kept: the arc.
+  for (const EvidenceRuns::Run& run : runs.runs) {
+    const float* const occupied = runs.occupied.data() + run.first;
+    for (int k = 0; k < run.count; ++k) {
+      if (occupied[k] != 0.0f) {
+        deferred->cells.emplace_back();
+        CellEvidence& c = deferred->cells.back();
+        c.cell = run.cell + static_cast<std::uint32_t>(k);
+        c.empty = 0.0f;  // applied above
+        c.occupied = occupied[k];
+        c.probability = runs.probability[run.first + static_cast<std::size_t>(k)];
+      }
     }
   }
 }

@@ -9,7 +9,9 @@
 
 #include <algorithm>
 
+#include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
+#include "sonargrid/rules/run_kernels.h"
 
 namespace sg {
 
@@ -26,50 +28,13 @@ void DempsterShaferRule::configure(const ParameterSet& /*params*/) {}
 
 void DempsterShaferRule::apply(const Footprint& fp, Grid& grid) const {
   DempsterShaferCell* const cells = grid.cells<DempsterShaferCell>();
-  for (const CellEvidence& c : fp.cells) {
-    double o = std::clamp(static_cast<double>(c.occupied), 0.0, 1.0);
-    double e = std::clamp(static_cast<double>(c.empty), 0.0, 1.0);
-    DempsterShaferCell& m = cells[c.cell];
-    double& mo = m.occ;
-    double& me = m.emp;
-    // Every model gives a cell one kind of evidence; Dempster's rule then shortens to
-    //   m(occ) = (m(occ) + m(unk) o) / (1 − m(emp) o),  m(emp) = m(emp)(1 − o) / (1 − m(emp) o)
-    // (and symmetrically for e): the general form below with e = 0, in fewer operations.
-    if (e == 0.0) {
-      const double denominator = 1.0 - me * o;
-      if (denominator <= 0.0) continue;  // total conflict, see below
-      const double inv = 1.0 / denominator;
-      const double mu = 1.0 - mo - me;
-      mo = (mo + mu * o) * inv;
-      me = me * (1.0 - o) * inv;
-      continue;
-    }
-    if (o == 0.0) {
-      const double denominator = 1.0 - mo * e;
-      if (denominator <= 0.0) continue;
-      const double inv = 1.0 / denominator;
-      const double mu = 1.0 - mo - me;
-      me = (me + mu * e) * inv;
-      mo = mo * (1.0 - e) * inv;
-      continue;
-    }
-    if (o + e > 1.0) {  // masses must sum to at most one
-      const double s = o + e;
-      o /= s;
-      e /= s;
-    }
-    const double u = 1.0 - o - e;
-    const double mu = 1.0 - mo - me;
-    const double conflict = mo * e + me * o;
-    // Total conflict (a certain cell meets certain opposite evidence) leaves Dempster's rule
-    // undefined; the cell keeps its masses.
-    if (conflict >= 1.0) continue;
-    const double norm = 1.0 / (1.0 - conflict);
-    const double newOcc = (mo * o + mo * u + mu * o) * norm;
-    const double newEmp = (me * e + me * u + mu * e) * norm;
-    mo = newOcc;
-    me = newEmp;
-  }
+  for (const CellEvidence& c : fp.cells)
+    cellrule::dempsterShafer(c.occupied, c.empty, cells[c.cell]);
+}
+
+void DempsterShaferRule::applyRuns(const EvidenceRuns& runs, Grid& grid,
+                                   Footprint* /*deferred*/) const {
+  runs::dempsterShafer(runs, grid.cells<DempsterShaferCell>());
 }
 
 double DempsterShaferRule::occupancyOf(const DempsterShaferCell& c) const {

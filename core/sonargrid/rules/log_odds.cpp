@@ -7,15 +7,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
+#include "sonargrid/rules/run_kernels.h"
 
 namespace sg {
 namespace {
 double odds(double p) {
   return p / (1.0 - p);
 }
-// Keeps a model's 0 or 1 from becoming an infinite step; the clamp bounds the layer anyway.
-constexpr double kProbabilityFloor = 1e-6;
 }  // namespace
 
 const RuleInfo& LogOddsRule::staticInfo() {
@@ -45,12 +45,12 @@ void LogOddsRule::configure(const ParameterSet& p) {
 void LogOddsRule::apply(const Footprint& fp, Grid& grid) const {
   LogOddsCell* const cells = grid.cells<LogOddsCell>();
   const double invPrior = 1.0 / priorOdds_;
-  for (const CellEvidence& c : fp.cells) {
-    const double p =
-        std::clamp(static_cast<double>(c.probability), kProbabilityFloor, 1.0 - kProbabilityFloor);
-    double& o = cells[c.cell].odds;
-    o = std::clamp(o * odds(p) * invPrior, minOdds_, maxOdds_);
-  }
+  for (const CellEvidence& c : fp.cells)
+    cellrule::logOdds(c.probability, invPrior, minOdds_, maxOdds_, cells[c.cell]);
+}
+
+void LogOddsRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* /*deferred*/) const {
+  runs::logOdds(runs, grid.cells<LogOddsCell>(), 1.0 / priorOdds_, minOdds_, maxOdds_);
 }
 
 double LogOddsRule::nativeOf(const LogOddsCell& c) const {

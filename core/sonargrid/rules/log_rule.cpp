@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
+#include "sonargrid/rules/run_kernels.h"
 
 namespace sg {
 
@@ -35,16 +37,12 @@ void LogRule::configure(const ParameterSet& p) {
 }
 
 void LogRule::apply(const Footprint& fp, Grid& grid) const {
-  constexpr double kLow = 1e-300, kHigh = 1e300;
   LogCell* const cells = grid.cells<LogCell>();
-  for (const CellEvidence& c : fp.cells) {
-    double& m = cells[c.cell].product;
-    m *= (1.0 - static_cast<double>(c.empty)) * (1.0 + static_cast<double>(c.occupied));
-    if (m > kHigh)
-      m = kHigh;
-    else if (m < kLow && m > 0.0)
-      m = kLow;
-  }
+  for (const CellEvidence& c : fp.cells) cellrule::logProduct(c.empty, c.occupied, cells[c.cell]);
+}
+
+void LogRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* /*deferred*/) const {
+  runs::logProduct(runs, grid.cells<LogCell>());
 }
 
 double LogRule::nativeOf(const LogCell& c) const {

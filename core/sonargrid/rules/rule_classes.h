@@ -28,6 +28,7 @@ class AdditionRule final : public RuleOnCells<AdditionRule, EmptyEvidence, Occup
     return CellLayout::of(EmptyEvidence{0.0}, OccupiedEvidence{0.0});
   }
   void apply(const Footprint& footprint, Grid& grid) const override;
+  void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
   bool needsTotals() const override { return normalise_; }
   void applyPart(const Footprint& part, const FootprintTotals& totals, Grid& grid) const override;
 
@@ -59,6 +60,7 @@ class BayesRule final : public RuleOnCells<BayesRule, BayesCell> {
   void configure(const ParameterSet& params) override;
   CellLayout layout() const override { return CellLayout::of(BayesCell{prior_}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
+  void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
 
   double occupancyOf(const BayesCell& c) const { return c.p; }
   double nativeOf(const BayesCell& c) const { return c.p; }
@@ -80,6 +82,7 @@ class LogRule final : public RuleOnCells<LogRule, LogCell> {
   void configure(const ParameterSet& params) override;
   CellLayout layout() const override { return CellLayout::of(LogCell{1.0}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
+  void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
 
   double occupancyOf(const LogCell& c) const;
   double nativeOf(const LogCell& c) const;
@@ -100,6 +103,7 @@ class LogOddsRule final : public RuleOnCells<LogOddsRule, LogOddsCell> {
   void configure(const ParameterSet& params) override;
   CellLayout layout() const override { return CellLayout::of(LogOddsCell{priorOdds_}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
+  void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
 
   double occupancyOf(const LogOddsCell& c) const;
   double nativeOf(const LogOddsCell& c) const;
@@ -151,6 +155,7 @@ class DempsterShaferRule final : public RuleOnCells<DempsterShaferRule, Dempster
   void configure(const ParameterSet& params) override;
   CellLayout layout() const override { return CellLayout::of(DempsterShaferCell{0.0, 0.0}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
+  void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
 
   double occupancyOf(const DempsterShaferCell& c) const;
   double nativeOf(const DempsterShaferCell& c) const { return c.occ - c.emp; }

@@ -74,6 +74,16 @@ class UpdateRule {
     return false;
   }
 
+  // Folds a reading's cells given as runs (footprint.h; the mapper's batch path, where the model
+  // hands its cells over as runs), each cell as apply() would. A rule without totals applies them
+  // all. A rule with totals (needsTotals()) applies now what does not depend on them and appends to
+  // `deferred` the cells whose update does, such that applyPart(deferred, totals) later finishes
+  // the reading and occupiedFixedPoint(deferred) is these cells' share of the totals; the two parts
+  // must touch separate state of a cell (or all of it be deferred), since the deferred part of a
+  // reading may be applied after the next readings' first parts. The default converts the runs to
+  // CellEvidence and applies (or defers) all of them.
+  virtual void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const;
+
   virtual double occupancy(const Grid& grid, std::size_t cell) const = 0;  // p(occupied), [0, 1]
   virtual double native(const Grid& grid, std::size_t cell) const = 0;
   virtual bool filled(const Grid& grid, std::size_t cell) const = 0;  // occupied beats free

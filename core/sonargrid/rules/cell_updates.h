@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// One cell's update by each rule, from the model's single-precision values: what the rules' apply()
+// (one CellEvidence at a time) and the run kernels' last cells (run_kernels.cpp, whose lanes repeat
+// these operations in this order) both do, so that the two paths give the same bits. Always
+// inlined, as they were written in apply()'s loops before.
+
+#include <algorithm>
+
+#include "sonargrid/rules/rule_classes.h"
+
+namespace sg::cellrule {
+
+// Probability addition, paper 000 eq 8 (AdditionRule).
+[[gnu::always_inline]] inline void additionEmpty(float empty, EmptyEvidence& cell) {
+  if (empty > 0.0) {
+    double& e = cell.emp;
+    e = e + empty - e * empty;
+  }
+}
+[[gnu::always_inline]] inline void additionOccupied(float occupied, double scale,
+                                                    OccupiedEvidence& cell) {
+  if (occupied > 0.0) {
+    const double po = occupied * scale;
+    double& o = cell.occ;
+    o = o + po - o * po;
+  }
+}
+
+// Bayes (BayesRule): paper 001 maps evidence to [0, 0.5] (empty) and [0.5, 1] (occupied).
+[[gnu::always_inline]] inline double bayesEvidence(float empty, float occupied) {
+  return 0.5 + 0.5 * (static_cast<double>(occupied) - static_cast<double>(empty));
+}
+[[gnu::always_inline]] inline void bayes(double p, BayesCell& cell) {
+  double& m = cell.p;
+  const double num = p * m;
+  const double den = num + (1.0 - p) * (1.0 - m);
+  // den = 0 only when certain evidence meets a certain opposite cell; Bayes is undefined there
+  // and the cell keeps its value.
+  if (den > 0.0) m = num / den;
+}
+
+// The log update's product (LogRule), held within [kLogLow, kLogHigh].
+inline constexpr double kLogLow = 1e-300, kLogHigh = 1e300;
+[[gnu::always_inline]] inline void logProduct(float empty, float occupied, LogCell& cell) {
+  double& m = cell.product;
+  m *= (1.0 - static_cast<double>(empty)) * (1.0 + static_cast<double>(occupied));
+  if (m > kLogHigh)
+    m = kLogHigh;
+  else if (m < kLogLow && m > 0.0)
+    m = kLogLow;
+}
+
+// Clamped log-odds on the odds (LogOddsRule); the floor keeps a model's 0 or 1 from becoming an
+// infinite step.
+inline constexpr double kProbabilityFloor = 1e-6;
+[[gnu::always_inline]] inline void logOdds(float probability, double invPrior, double minOdds,
+                                           double maxOdds, LogOddsCell& cell) {
+  const double p =
+      std::clamp(static_cast<double>(probability), kProbabilityFloor, 1.0 - kProbabilityFloor);
+  double& o = cell.odds;
+  o = std::clamp(o * (p / (1.0 - p)) * invPrior, minOdds, maxOdds);
+}
+
+// Dempster's rule of combination (DempsterShaferRule).
+[[gnu::always_inline]] inline void dempsterShafer(float occupied, float empty,
+                                                  DempsterShaferCell& m) {
+  double o = std::clamp(static_cast<double>(occupied), 0.0, 1.0);
+  double e = std::clamp(static_cast<double>(empty), 0.0, 1.0);
+  double& mo = m.occ;
+  double& me = m.emp;
+  // Every model gives a cell one kind of evidence; Dempster's rule then shortens to
+  //   m(occ) = (m(occ) + m(unk) o) / (1 − m(emp) o),  m(emp) = m(emp)(1 − o) / (1 − m(emp) o)
+  // (and symmetrically for e): the general form below with e = 0, in fewer operations.
+  if (e == 0.0) {
+    const double denominator = 1.0 - me * o;
+    if (denominator <= 0.0) return;  // total conflict, see below
+    const double inv = 1.0 / denominator;
+    const double mu = 1.0 - mo - me;
+    mo = (mo + mu * o) * inv;
+    me = me * (1.0 - o) * inv;
+    return;
+  }
+  if (o == 0.0) {
+    const double denominator = 1.0 - mo * e;
+    if (denominator <= 0.0) return;
+    const double inv = 1.0 / denominator;
+    const double mu = 1.0 - mo - me;
+    me = (me + mu * e) * inv;
+    mo = mo * (1.0 - e) * inv;
+    return;
+  }
+  if (o + e > 1.0) {  // masses must sum to at most one
+    const double s = o + e;
+    o /= s;
+    e /= s;
+  }
+  const double u = 1.0 - o - e;
+  const double mu = 1.0 - mo - me;
+  const double conflict = mo * e + me * o;
+  // Total conflict (a certain cell meets certain opposite evidence) leaves Dempster's rule
+  // undefined; the cell keeps its masses.
+  if (conflict >= 1.0) return;
+  const double norm = 1.0 / (1.0 - conflict);
+  const double newOcc = (mo * o + mo * u + mu * o) * norm;
+  const double newEmp = (me * e + me * u + mu * e) * norm;
+  mo = newOcc;
+  me = newEmp;
+}
+
+}  // namespace sg::cellrule

@@ -1,0 +1,214 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Compiled with -ffp-contract=off (core/CMakeLists.txt): the AVX2 clones must not fuse a multiply
+// and an add that the baseline build (x86-64 has no FMA) and the rules' apply() do apart.
+// Each kernel takes four consecutive cells at a time in double lanes, the model's floats widened as
+// apply() widens them, and repeats cell_updates.h's operations in its order; a lane's `if` is a
+// select of the updated and the old value. Dempster–Shafer's cells with both kinds of evidence
+// (which no cone model gives) go through cell_updates.h itself.
+#include "sonargrid/rules/run_kernels.h"
+
+#include <cstdint>
+#include <cstring>
+
+#include "sonargrid/rules/cell_updates.h"
+
+// The clones' resolver (an ifunc) runs while the dynamic loader relocates the program, before a
+// sanitizer's runtime is set up, and an instrumented one crashes the program at start; under
+// ThreadSanitizer or AddressSanitizer (with UndefinedBehaviorSanitizer in the sanitizer and fuzz
+// jobs) the kernels are built once, for the baseline. Clang (14) builds them once too: it ignores
+// target_clones on a function declared before without it (run_kernels.h), where GCC clones it.
+// The results are the same bits either way.
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__) || defined(__clang__)
+#define SG_RUN_CLONES
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer) || __has_feature(address_sanitizer) || \
+    __has_feature(undefined_behavior_sanitizer)
+#define SG_RUN_CLONES
+#endif
+#endif
+#ifndef SG_RUN_CLONES
+#define SG_RUN_CLONES __attribute__((target_clones("default", "avx2")))
+#endif
+// A kernel's lambdas are inlined into each clone: one left out of line is built for the baseline,
+// its 32-byte vectors passed through memory (GCC did so with Dempster–Shafer's, 4 × slower).
+#if defined(__GNUC__) && !defined(__clang__)
+#define SG_INLINE_LAMBDA __attribute__((always_inline))
+#else
+#define SG_INLINE_LAMBDA
+#endif
+
+namespace sg::runs {
+namespace {
+
+constexpr int W = 4;
+using Doubles = double __attribute__((vector_size(8 * W)));
+using Floats = float __attribute__((vector_size(4 * W)));
+
+[[gnu::always_inline]] inline Doubles widen(const float* p) {
+  Floats f;
+  std::memcpy(&f, p, sizeof f);
+  return __builtin_convertvector(f, Doubles);
+}
+[[gnu::always_inline]] inline Doubles load(const void* p) {
+  Doubles v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+[[gnu::always_inline]] inline void store(void* p, Doubles v) {
+  std::memcpy(p, &v, sizeof v);
+}
+[[gnu::always_inline]] inline Doubles splat(double x) {
+  return Doubles{x, x, x, x};
+}
+// std::clamp(v, lo, hi) per lane: v < lo ? lo : hi < v ? hi : v.
+[[gnu::always_inline]] inline Doubles clamp(Doubles v, double lo, double hi) {
+  return v < lo ? splat(lo) : (hi < v ? splat(hi) : v);
+}
+
+// group(empty, occupied, probability, cells) for every W consecutive cells of every run: W values
+// from each array, W cells to update in place. No lane touches a cell past its run (another
+// row's, perhaps another thread's): a run's last count mod W cells are updated as part of its last
+// W cells, computed on a copy of their values from before the run's other groups (so that the
+// cells both cover get the same value from either) and copied back at the end; a run shorter
+// than W is updated on a copy padded with its first cell. The values past a run that the padding
+// lanes read are ignored.
+template <class Cell, class Group>
+[[gnu::always_inline]] inline void eachGroup(const EvidenceRuns& runs, Cell* plane, Group&& group) {
+  const float* const empty = runs.empty.data();
+  const float* const occupied = runs.occupied.data();
+  const float* const probability = runs.probability.data();
+  for (const EvidenceRuns::Run& run : runs.runs) {
+    Cell* const cells = plane + run.cell;
+    const std::size_t v = run.first;
+    const int n = run.count;
+    Cell last[W];
+    if (n < W) {
+      for (int j = 0; j < W; ++j) last[j] = cells[j < n ? j : 0];
+      group(empty + v, occupied + v, probability + v, last);
+      for (int j = 0; j < n; ++j) cells[j] = last[j];
+      continue;
+    }
+    const int tail = n % W == 0 ? -1 : n - W;  // the first of the last W cells, when apart
+    if (tail >= 0) {
+      std::memcpy(static_cast<void*>(last), cells + tail, sizeof last);
+      group(empty + v + tail, occupied + v + tail, probability + v + tail, last);
+    }
+    for (int k = 0; k + W <= n; k += W)
+      group(empty + v + k, occupied + v + k, probability + v + k, cells + k);
+    if (tail >= 0) std::memcpy(static_cast<void*>(cells + tail), last, sizeof last);
+  }
+}
+
+// Dempster–Shafer's general case, for a cell with both kinds of evidence (no cone model gives one):
+// a call, so that the kernel's lanes stay small enough to inline.
+[[gnu::noinline]] void generalDempsterShafer(float occupied, float empty,
+                                             DempsterShaferCell& cell) {
+  cellrule::dempsterShafer(occupied, empty, cell);
+}
+
+static_assert(sizeof(EmptyEvidence) == sizeof(double) &&
+              sizeof(OccupiedEvidence) == sizeof(double));
+static_assert(sizeof(BayesCell) == sizeof(double) && sizeof(LogCell) == sizeof(double));
+static_assert(sizeof(LogOddsCell) == sizeof(double));
+static_assert(sizeof(DempsterShaferCell) == 2 * sizeof(double));
+
+}  // namespace
+
+SG_RUN_CLONES void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp) {
+  eachGroup(runs, emp,
+            [](const float* empty, const float*, const float*, EmptyEvidence* cells)
+                SG_INLINE_LAMBDA {
+                  const Doubles e = widen(empty);
+                  const Doubles m = load(cells);
+                  store(cells, e > 0.0 ? m + e - m * e : m);
+                });
+}
+
+SG_RUN_CLONES void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ) {
+  eachGroup(runs, occ,
+            [](const float*, const float* occupied, const float*, OccupiedEvidence* cells)
+                SG_INLINE_LAMBDA {
+                  const Doubles po = widen(occupied) * 1.0;  // the scale
+                  const Doubles m = load(cells);
+                  store(cells, po > 0.0 ? m + po - m * po : m);
+                });
+}
+
+SG_RUN_CLONES void bayes(const EvidenceRuns& runs, BayesCell* plane, bool likelihood) {
+  auto update = [](Doubles p, BayesCell* cells) SG_INLINE_LAMBDA {
+    const Doubles m = load(cells);
+    const Doubles num = p * m;
+    const Doubles den = num + (1.0 - p) * (1.0 - m);
+    store(cells, den > 0.0 ? num / den : m);
+  };
+  if (likelihood) {
+    eachGroup(runs, plane,
+              [&](const float*, const float*, const float* probability, BayesCell* cells)
+                  SG_INLINE_LAMBDA { update(widen(probability), cells); });
+  } else {
+    eachGroup(
+        runs, plane,
+        [&](const float* empty, const float* occupied, const float*, BayesCell* cells)
+            SG_INLINE_LAMBDA { update(0.5 + 0.5 * (widen(occupied) - widen(empty)), cells); });
+  }
+}
+
+SG_RUN_CLONES void logProduct(const EvidenceRuns& runs, LogCell* plane) {
+  eachGroup(runs, plane,
+            [](const float* empty, const float* occupied, const float*, LogCell* cells)
+                SG_INLINE_LAMBDA {
+                  const Doubles m = load(cells) * ((1.0 - widen(empty)) * (1.0 + widen(occupied)));
+                  const auto tiny = (m < cellrule::kLogLow) & (m > 0.0);
+                  store(cells, m > cellrule::kLogHigh ? splat(cellrule::kLogHigh)
+                                                      : (tiny ? splat(cellrule::kLogLow) : m));
+                });
+}
+
+SG_RUN_CLONES void logOdds(const EvidenceRuns& runs, LogOddsCell* plane, double invPrior,
+                           double minOdds, double maxOdds) {
+  eachGroup(runs, plane,
+            [=](const float*, const float*, const float* probability, LogOddsCell* cells)
+                SG_INLINE_LAMBDA {
+                  const Doubles p = clamp(widen(probability), cellrule::kProbabilityFloor,
+                                          1.0 - cellrule::kProbabilityFloor);
+                  const Doubles o = load(cells);
+                  store(cells, clamp(o * (p / (1.0 - p)) * invPrior, minOdds, maxOdds));
+                });
+}
+
+SG_RUN_CLONES void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* plane) {
+  eachGroup(runs, plane,
+            [](const float* empty, const float* occupied, const float*, DempsterShaferCell* cells)
+                SG_INLINE_LAMBDA {
+                  const Doubles o = clamp(widen(occupied), 0.0, 1.0);
+                  const Doubles e = clamp(widen(empty), 0.0, 1.0);
+                  const Doubles lo = load(cells), hi = load(cells + 2);
+                  const Doubles mo = __builtin_shufflevector(lo, hi, 0, 2, 4, 6);
+                  const Doubles me = __builtin_shufflevector(lo, hi, 1, 3, 5, 7);
+                  // One kind of evidence x: occupied (e = 0, cellrule's first case) or empty (o =
+                  // 0, its second); `grow` is the mass x adds to, `shrink` the other.
+                  const auto onlyOccupied = e == 0.0;
+                  const auto onlyEmpty = o == 0.0;
+                  const Doubles x = onlyOccupied ? o : e;
+                  const Doubles grow = onlyOccupied ? mo : me;
+                  const Doubles shrink = onlyOccupied ? me : mo;
+                  const Doubles denominator = 1.0 - shrink * x;
+                  const Doubles inv = 1.0 / denominator;
+                  const Doubles mu = 1.0 - mo - me;
+                  const Doubles grown = (grow + mu * x) * inv;
+                  const Doubles shrunk = shrink * (1.0 - x) * inv;
+                  // Total conflict (denominator <= 0) keeps the masses, as does a lane of both
+                  // kinds, done below by cellrule.
+                  const auto general = ~(onlyOccupied | onlyEmpty);
+                  const auto keep = (denominator <= 0.0) | general;
+                  const Doubles newOcc = keep ? mo : (onlyOccupied ? grown : shrunk);
+                  const Doubles newEmp = keep ? me : (onlyOccupied ? shrunk : grown);
+                  store(cells, __builtin_shufflevector(newOcc, newEmp, 0, 4, 1, 5));
+                  store(cells + 2, __builtin_shufflevector(newOcc, newEmp, 2, 6, 3, 7));
+                  for (int j = 0; j < W; ++j) {
+                    if (general[j]) generalDempsterShafer(occupied[j], empty[j], cells[j]);
+                  }
+                });
+}
+
+}  // namespace sg::runs

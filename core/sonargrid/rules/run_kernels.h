@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#pragma once
+// The rules' updates of a reading's runs of consecutive cells (UpdateRule::applyRuns,
+// footprint.h), several cells at a time in double lanes: each cell gets the very operations, in the
+// same order, that the rule's apply() gives it one CellEvidence at a time, so both paths give the
+// same bits. Built for the baseline and, chosen when the program starts, for AVX2
+// (run_kernels.cpp).
+
+#include "sonargrid/footprint.h"
+#include "sonargrid/rules/rule_classes.h"
+
+namespace sg::runs {
+
+// AdditionRule::applyPart's empty update of every cell of the runs with c.empty > 0.
+void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp);
+// Its occupied update with scale 1 (no normalisation) of every cell with c.occupied > 0.
+void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ);
+// Every cell of the runs in `cells` (the grid's plane):
+// BayesRule::apply, with p = 0.5 + (pO − pE)/2 (`likelihood` false) or the model's probability.
+void bayes(const EvidenceRuns& runs, BayesCell* cells, bool likelihood);
+// LogRule::apply.
+void logProduct(const EvidenceRuns& runs, LogCell* cells);
+// LogOddsRule::apply, with its configured 1/prior odds and clamp.
+void logOdds(const EvidenceRuns& runs, LogOddsCell* cells, double invPrior, double minOdds,
+             double maxOdds);
+// DempsterShaferRule::apply.
+void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* cells);
+
+}  // namespace sg::runs

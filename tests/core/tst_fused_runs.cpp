@@ -1,0 +1,212 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The batch path where the model hands its cells to the rule as runs (SensorModel::evidenceRuns,
+// UpdateRule::applyRuns; no Footprint in between) against the footprint path, the oracle: every
+// cone model × every probabilistic rule, on 1, 2 and 3 threads, with the rows in eight lanes (on a
+// CPU with AVX2) and in four, must leave every plane of the grid and every observed mark with the
+// same bits.
+//
+// Where the expectations come from: the grid of the footprint path itself. A mapper with a
+// FootprintObserver maps through footprint() and UpdateRule::apply() one reading at a time (the
+// observer must see whole footprints: Mapper::integrateBeams), which is the code every other suite
+// pins (tst_rules' hand-computed updates, tst_models' values, tst_mapper's batch = incremental);
+// Mapper::integrate() scan by scan is that same path, and is checked to agree with it first.
+
+#include <QtTest>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+
+#include "sonargrid/concurrency.h"
+#include "sonargrid/mapper.h"
+#include "sonargrid/registry_hooks.h"
+#include "sonargrid/rules/rule_classes.h"
+
+using namespace sg;
+
+namespace {
+
+// Sees every footprint and does nothing: makes the mapper use the footprint path.
+struct NullObserver final : FootprintObserver {
+  void reset(std::size_t) override {}
+  void observe(const Footprint&) override {}
+};
+
+// A 4 × 3 m grid at 5 cm, smaller than the sonar's 5 m reach, so that most cones are cut by its
+// edges.
+GridSpec smallGrid() {
+  GridSpec g;
+  g.origin = Position(-2.0, -1.5);
+  g.cellSize = 0.05;
+  g.width = 80;
+  g.height = 60;
+  return g;
+}
+
+// A generated log (a fixed linear congruential sequence, so the same every run): 270 scans of the
+// 16-sonar Pioneer ring, 4320 readings, above the mapper's 4096 below which it keeps to one thread.
+// The robot is placed anywhere in the grid, every ninth scan within 5 cm of an edge or a corner
+// (rows and columns at the grid's edge; cones leaving it), at any heading, every eighth scan at a
+// heading of exactly ±π (sonars whose cones straddle the ±π bearing line; the front sonar's axis
+// on it). Ranges run from 0.05 m to beyond the maximum: every fifth reading, and any beyond 5 m,
+// is a no-echo.
+Dataset generated() {
+  Dataset d;
+  d.name = "generated";
+  d.ring = SonarRing::pioneer3dx();
+  std::uint64_t state = 12345;
+  auto uniform = [&state](double lo, double hi) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1p-53;
+  };
+  const GridSpec g = smallGrid();
+  const double x0 = g.origin.x(), x1 = x0 + g.widthMetres();
+  const double y0 = g.origin.y(), y1 = y0 + g.heightMetres();
+  for (int k = 0; k < 270; ++k) {
+    Scan s;
+    s.time = 0.1 * k;
+    double x = uniform(x0 + 0.3, x1 - 0.3), y = uniform(y0 + 0.3, y1 - 0.3);
+    if (k % 9 == 0) {  // at an edge or in a corner
+      x = (k / 9) % 3 == 0 ? x0 + 0.03 : (k / 9) % 3 == 1 ? x1 - 0.03 : x;
+      y = (k / 9) % 2 == 0 ? y0 + 0.02 : y1 - 0.04;
+    }
+    double heading = uniform(-std::numbers::pi, std::numbers::pi);
+    if (k % 8 == 0) heading = k % 16 == 0 ? std::numbers::pi : -std::numbers::pi;
+    s.odometry = Pose2D(x, y, heading);
+    s.truth = s.odometry;
+    for (std::uint16_t i = 0; i < d.ring.size(); ++i) {
+      double range = uniform(0.05, 5.6);
+      if ((k * 16 + i) % 5 == 0 || range >= d.ring.maxRange) range = Reading::kNoEcho;
+      s.readings.push_back(Reading{i, range, s.time + 0.002 * i});
+    }
+    d.scans.push_back(std::move(s));
+  }
+  return d;
+}
+
+const Dataset& workload() {
+  static const Dataset d = generated();
+  return d;
+}
+
+// Whether two grids of one rule hold the same bits in every plane, and the same observed marks.
+template <class... Cells>
+bool samePlanes(const Grid& a, const Grid& b) {
+  if (a.cellCount() != b.cellCount()) return false;
+  const std::size_t n = a.cellCount();
+  std::size_t plane = 0;
+  const bool planes =
+      ((std::memcmp(a.cells<Cells>(plane), b.cells<Cells>(plane), n * sizeof(Cells)) == 0 &&
+        ++plane) &&
+       ...);
+  std::vector<std::uint8_t> ma(n), mb(n);
+  a.copyObserved(0, n, ma.data());
+  b.copyObserved(0, n, mb.data());
+  return planes && ma == mb;
+}
+
+bool sameGrid(const std::string& rule, const Grid& a, const Grid& b) {
+  if (rule == "addition") return samePlanes<EmptyEvidence, OccupiedEvidence>(a, b);
+  if (rule == "bayes" || rule == "bayes-recursive") return samePlanes<BayesCell>(a, b);
+  if (rule == "log") return samePlanes<LogCell>(a, b);
+  if (rule == "logodds") return samePlanes<LogOddsCell>(a, b);
+  if (rule == "dempster-shafer") return samePlanes<DempsterShaferCell>(a, b);
+  return false;
+}
+
+}  // namespace
+
+class TstFusedRuns : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void runsGiveTheFootprintPathsBits_data();
+  void runsGiveTheFootprintPathsBits();
+};
+
+void TstFusedRuns::runsGiveTheFootprintPathsBits_data() {
+  QTest::addColumn<QString>("model");
+  QTest::addColumn<QString>("rule");
+  QTest::addColumn<bool>("noEchoFree");
+  QTest::addColumn<bool>("normalise");
+  const char* const models[] = {"hpf", "konolige", "murphy", "parameterized"};
+  const char* const rules[] = {"addition", "bayes",   "bayes-recursive",
+                               "log",      "logodds", "dempster-shafer"};
+  for (const char* m : models) {
+    for (const char* r : rules) {
+      // No-echo readings write nothing by default and free space with no_echo = 1 (every model
+      // declares the switch: noEchoParameter); addition defers its occupied cells until the
+      // reading's total is known when it normalises (its default) and applies them at once when
+      // not.
+      for (const bool noEcho : {false, true}) {
+        for (const bool normalise : {true, false}) {
+          if (!normalise && std::string(r) != "addition") continue;
+          QTest::addRow("%s/%s%s%s", m, r, noEcho ? " no_echo=1" : "",
+                        normalise ? "" : " normalise=0")
+              << QString(m) << QString(r) << noEcho << normalise;
+        }
+      }
+    }
+  }
+}
+
+void TstFusedRuns::runsGiveTheFootprintPathsBits() {
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  QFETCH(bool, noEchoFree);
+  QFETCH(bool, normalise);
+  const Dataset& d = workload();
+  MapperSettings settings;
+  settings.model = model.toStdString();
+  settings.rule = rule.toStdString();
+  settings.pose = PoseSource::Truth;
+  settings.parameters = defaultParameters(settings.model, settings.rule);
+  settings.parameters.set("no_echo", noEchoFree ? 1.0 : 0.0);
+  if (settings.rule == "addition") settings.parameters.set("normalise", normalise ? 1.0 : 0.0);
+
+  // The oracle: the footprint path, one reading at a time.
+  Mapper oracle(d.ring, smallGrid(), settings);
+  NullObserver observer;
+  oracle.setObserver(&observer);
+  {
+    ScopedThreadCount one(1);
+    QVERIFY(oracle.mapDataset(d));
+  }
+  QCOMPARE(oracle.readingsIntegrated(), d.readingCount());
+  Mapper incremental(d.ring, smallGrid(), settings);
+  for (const Scan& s : d.scans) incremental.integrate(s);
+  QVERIFY(sameGrid(settings.rule, oracle.storage(), incremental.storage()));
+  // The workload reaches the cases it is meant to: cells written in the grid's edge rows and
+  // columns.
+  const GridSpec g = smallGrid();
+  bool bottom = false, top = false, left = false, right = false;
+  for (int i = 0; i < g.width; ++i) {
+    bottom = bottom || oracle.storage().observed(static_cast<std::size_t>(i));
+    top = top || oracle.storage().observed(static_cast<std::size_t>((g.height - 1) * g.width + i));
+  }
+  for (int j = 0; j < g.height; ++j) {
+    left = left || oracle.storage().observed(static_cast<std::size_t>(j * g.width));
+    right = right || oracle.storage().observed(static_cast<std::size_t>(j * g.width + g.width - 1));
+  }
+  QVERIFY(bottom && top && left && right);
+
+  // Rows in eight lanes where the CPU has AVX2 (else four again), and in the baseline's four.
+  for (const bool wide : {true, false}) {
+    const bool previous = testing::useWideLanes(wide);
+    for (const unsigned threads : {1u, 2u, 3u}) {
+      ScopedThreadCount count(threads);
+      Mapper runs(d.ring, smallGrid(), settings);
+      QVERIFY(runs.mapDataset(d));
+      QCOMPARE(runs.readingsIntegrated(), d.readingCount());
+      if (!sameGrid(settings.rule, oracle.storage(), runs.storage())) {
+        testing::useWideLanes(previous);
+        QFAIL(qPrintable(QString("%1 threads, %2 lanes: the grid differs from the footprint path's")
+                             .arg(threads)
+                             .arg(wide ? "wide" : "four")));
+      }
+    }
+    testing::useWideLanes(previous);
+  }
+}
+
+QTEST_APPLESS_MAIN(TstFusedRuns)
+#include "tst_fused_runs.moc"
