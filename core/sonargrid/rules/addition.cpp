@@ -57,12 +57,9 @@ void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* de
     const float* const occupied = runs.occupied.data() + run.first;
     for (int k = 0; k < run.count; ++k) {
       if (occupied[k] != 0.0f) {
-        deferred->cells.emplace_back();
-        CellEvidence& c = deferred->cells.back();
-        c.cell = run.cell + static_cast<std::uint32_t>(k);
+        CellEvidence c = cellrule::cellOfRun(runs, run, k);
         c.empty = 0.0f;  // applied above
-        c.occupied = occupied[k];
-        c.probability = runs.probability[run.first + static_cast<std::size_t>(k)];
+        deferred->cells.push_back(c);
       }
     }
   }

@@ -11,6 +11,17 @@
 
 namespace sg::cellrule {
 
+// Cell k of `run` as a Footprint holds it (footprint.h, EvidenceRuns).
+inline CellEvidence cellOfRun(const EvidenceRuns& runs, const EvidenceRuns::Run& run, int k) {
+  const std::size_t v = run.first + static_cast<std::size_t>(k);
+  CellEvidence c;
+  c.cell = run.cell + static_cast<std::uint32_t>(k);
+  c.empty = runs.empty[v];
+  c.occupied = runs.occupied[v];
+  c.probability = runs.probability[v];
+  return c;
+}
+
 // Probability addition, paper 000 eq 8 (AdditionRule).
 [[gnu::always_inline]] inline void additionEmpty(float empty, EmptyEvidence& cell) {
   if (empty > 0.0) {

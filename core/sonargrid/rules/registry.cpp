@@ -2,6 +2,7 @@
 #include <stdexcept>
 
 #include "sonargrid/registry_hooks.h"
+#include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
 
 namespace sg {
@@ -69,25 +70,12 @@ Compatibility compatibility(const std::string& model, const std::string& rule) {
   return {};
 }
 
-}  // namespace sg
-
-namespace sg {
-
 void UpdateRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const {
   thread_local Footprint part;
   Footprint& out = needsTotals() ? *deferred : part;
   if (!needsTotals()) part.clear();
-  for (const EvidenceRuns::Run& run : runs.runs) {
-    for (int k = 0; k < run.count; ++k) {
-      const std::size_t v = run.first + static_cast<std::size_t>(k);
-      out.cells.emplace_back();
-      CellEvidence& c = out.cells.back();
-      c.cell = run.cell + static_cast<std::uint32_t>(k);
-      c.empty = runs.empty[v];
-      c.occupied = runs.occupied[v];
-      c.probability = runs.probability[v];
-    }
-  }
+  for (const EvidenceRuns::Run& run : runs.runs)
+    for (int k = 0; k < run.count; ++k) out.cells.push_back(cellrule::cellOfRun(runs, run, k));
   if (!needsTotals()) apply(part, grid);
 }
 
