@@ -6,8 +6,8 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QTableWidget>
-#include <QTimer>
 #include <QVBoxLayout>
+#include <utility>
 
 namespace sg::ui {
 
@@ -23,6 +23,9 @@ MetricsPanel::MetricsPanel(QWidget* parent)
   setObjectName(QStringLiteral("metricsPanel"));
   // One computation at a time: a stale one is cancelled, not raced by its successor.
   pool_.setMaxThreadCount(1);
+  settle_.setSingleShot(true);
+  settle_.setInterval(kSettleMs);
+  connect(&settle_, &QTimer::timeout, this, &MetricsPanel::start);
   status_->setWordWrap(true);
   status_->setObjectName(QStringLiteral("metricsStatus"));
   status_->setTextInteractionFlags(Qt::TextSelectableByMouse);
@@ -49,6 +52,27 @@ MetricsPanel::~MetricsPanel() {
 
 void MetricsPanel::setMap(std::shared_ptr<const OccupancyMap> map) {
   input_.map = std::move(map);
+  if (std::exchange(awaitingMap_, false)) {
+    pending_ = true;
+    settle_.start();
+    return;
+  }
+  schedule();
+}
+
+void MetricsPanel::awaitMap() {
+  awaitingMap_ = true;
+  if (settle_.isActive()) {
+    settle_.stop();
+    pending_ = false;
+  }
+  if (cancelRunning_) cancelRunning_->store(true);
+  status_->setText(tr("Waiting for the new map…"));
+}
+
+void MetricsPanel::resume() {
+  if (!awaitingMap_) return;
+  awaitingMap_ = false;
   schedule();
 }
 
@@ -79,7 +103,9 @@ void MetricsPanel::schedule() {
 }
 
 void MetricsPanel::start() {
+  if (settle_.isActive()) return;  // its timeout starts the computation, with the newest inputs
   pending_ = false;
+  if (awaitingMap_) return;  // setMap() or resume() schedules again
   const quint64 generation = ++generation_;
   if (cancelRunning_) cancelRunning_->store(true);
   auto cancel = std::make_shared<std::atomic<bool>>(false);

@@ -11,6 +11,7 @@
 // one and waits for it, so the window may close mid-computation.
 
 #include <QThreadPool>
+#include <QTimer>
 #include <QWidget>
 #include <atomic>
 #include <memory>
@@ -40,11 +41,19 @@ class MetricsPanel : public QWidget {
                const MapperSettings& settings, double cellSize);
   // Options of the reference metrics (path pairs, seed); the CLI's defaults unless set.
   void setScoreOptions(const ScoreOptions& options);
+  // A newer map is on its way (a re-map began): the computation for the shown map stops now rather
+  // than take the CPU the re-map needs (a dragged slider would otherwise score every step's map
+  // while the next one is built), and nothing is computed until setMap() brings the new map or
+  // resume() says none is coming. The numbers shown stay meanwhile. The map that comes is scored
+  // once kSettleMs pass without another awaitMap(): while the slider moves, nothing is scored.
+  static constexpr int kSettleMs = 100;
+  void awaitMap();
+  void resume();
 
   // The numbers shown (null before the first result).
   const MetricsResult* result() const { return result_ ? &*result_ : nullptr; }
-  // True while a computation is scheduled or running.
-  bool busy() const { return pending_ || running_ > 0; }
+  // True while a computation is scheduled or running, or a new map is awaited.
+  bool busy() const { return pending_ || running_ > 0 || awaitingMap_; }
   // Blocks (running the event loop) until the newest inputs' numbers are shown; false on timeout.
   bool waitForResult(int timeoutMs);
   // Requests made / results shown (a result is shown for the newest request only).
@@ -80,8 +89,10 @@ class MetricsPanel : public QWidget {
   quint64 generation_ = 0;
   quint64 shownGeneration_ = 0;
   bool pending_ = false;
+  bool awaitingMap_ = false;
   int running_ = 0;
   std::shared_ptr<std::atomic<bool>> cancelRunning_;
+  QTimer settle_;  // awaitMap()'s map waits for it
   QThreadPool pool_;
 };
 

@@ -189,6 +189,7 @@ void RemapController::run(bool preview) {
   // Previews are of loaded logs: a live map is continued, which is already quick.
   if (preview && data_) startPreview(generation, cancel);  // queued first, so it runs first
   enqueue(Request{data_, source_, settings_, cellSize_, until_, cancel, generation, false});
+  emit started(generation);
 }
 
 void RemapController::scansAppended() {

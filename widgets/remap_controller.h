@@ -82,6 +82,10 @@ class RemapController : public QObject {
   // delivered, in order, unless a re-map was asked for after them.)
   void mapped(std::shared_ptr<const sg::OccupancyMap> map, double elapsedMs, quint64 generation,
               bool incremental);
+  // A re-map from the start of the log (or live source) began, for new settings, cells, log or
+  // end time (never a live map's append): mapped(), failed() or cancelled() of this generation
+  // follows.
+  void started(quint64 generation);
   // A run was superseded; `interrupted` says it stopped before the end of the log.
   void cancelled(quint64 generation, bool interrupted);
   void failed(const QString& message, quint64 generation);

@@ -79,6 +79,19 @@ MetricsDocks installMetrics(MainWindow* window) {
                        remap->cellSize());
         panel->setMap(std::move(map));
       });
+  // While a re-map runs (a dragged slider), the panel scores nothing: on two cores its worker
+  // would take a CPU from the re-map (the slider's latency, docs/performance.md).
+  QObject::connect(remap, &ui::RemapController::started, panel, &ui::MetricsPanel::awaitMap);
+  // No map of that re-map is coming (it failed, or was stopped with nothing newer after it): the
+  // panel scores the map it has.
+  QObject::connect(remap, &ui::RemapController::failed, panel,
+                   [panel, remap](const QString&, quint64 generation) {
+                     if (generation == remap->latestGeneration()) panel->resume();
+                   });
+  QObject::connect(remap, &ui::RemapController::cancelled, panel,
+                   [panel, remap](quint64 generation, bool) {
+                     if (generation == remap->latestGeneration()) panel->resume();
+                   });
   QObject::connect(panel, &ui::MetricsPanel::dminTintChanged, window->gridView(),
                    &ui::GridView::setDminTint);
   // Each reference edit (the editor's steps reach the Document) scores the shown map again.

@@ -19,6 +19,7 @@
 #include "grid_view.h"
 #include "main_window.h"
 #include "metrics_panel.h"
+#include "remap_controller.h"
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/metrics/derivative_noise.h"
 #include "sonargrid/metrics/vsdns.h"
@@ -211,6 +212,70 @@ class TestMetricsPanel : public QObject {
     QCOMPARE(*shown->value("derivative_noise"), noise.sum);
     QCOMPARE(*shown->value("derivative_noise_mean"), *noise.mean);
     QVERIFY(!shown->value("two_run_positive"));  // no second run
+  }
+
+  void draggedSliderScoresOnlyTheMapItStopsAt() {
+    // A dragged slider: each step starts a re-map (awaitMap) and delivers its map (setMap). The
+    // panel scores a delivered map only once MetricsPanel::kSettleMs pass without another re-map,
+    // so the steps it passes through are never scored: one computation (generation + 1) for the
+    // map of the last step. Maps A and B differ in their grids, which the result names.
+    GridSpec a, b;
+    a.cellSize = b.cellSize = 0.1;
+    a.width = 3;
+    a.height = 2;
+    b.width = 4;
+    b.height = 5;
+    MetricsPanel panel;
+    panel.setMap(std::make_shared<const OccupancyMap>(OccupancyMap::unobserved(a)));
+    QVERIFY(panel.waitForResult(10000));
+    QCOMPARE(panel.result()->spec, a);
+    const quint64 before = panel.generation();
+
+    panel.awaitMap();  // step 1 re-maps
+    QVERIFY(panel.busy());
+    panel.setMap(std::make_shared<const OccupancyMap>(OccupancyMap::unobserved(b)));
+    QCoreApplication::processEvents();  // a zero-delay start would run here; the settle waits
+    QCOMPARE(panel.generation(), before);
+    QVERIFY(panel.busy());
+    panel.awaitMap();  // step 2 re-maps before the settle: step 1's map B is never scored
+    panel.setMap(std::make_shared<const OccupancyMap>(OccupancyMap::unobserved(a)));
+    QVERIFY(panel.waitForResult(10000));
+    QCOMPARE(panel.generation(), before + 1);
+    QCOMPARE(panel.result()->spec, a);
+
+    // A re-map that brings no map (failed): resume() scores the map the panel has.
+    panel.awaitMap();
+    QVERIFY(panel.busy());
+    panel.resume();
+    QVERIFY(panel.waitForResult(10000));
+    QCOMPARE(panel.generation(), before + 2);
+    QCOMPARE(panel.result()->spec, a);
+    // Any other input still scores at once, as before.
+    panel.setMap(std::make_shared<const OccupancyMap>(OccupancyMap::unobserved(b)));
+    QCoreApplication::processEvents();
+    QCOMPARE(panel.generation(), before + 3);
+    QVERIFY(panel.waitForResult(10000));
+    QCOMPARE(panel.result()->spec, b);
+  }
+
+  void windowWaitsForTheNewMapBeforeScoring() {
+    // The window's wiring: a settings change starts a re-map (RemapController::started), the panel
+    // awaits its map and then shows that map's numbers, never the old map's.
+    app::MainWindow window(GridView::Backend::Raster);
+    QVERIFY(openRoom(window, settingsOf("himm", "himm"), 0.1, true));
+    auto* panel = window.findChild<MetricsPanel*>();
+    QSignalSpy started(window.remapController(), &RemapController::started);
+    window.setMapperSettings(settingsOf("hpf", "addition"));
+    QCOMPARE(started.count(), 1);
+    QCOMPARE(started.at(0).at(0).value<quint64>(), window.remapController()->latestGeneration());
+    QVERIFY(panel->busy());
+    QVERIFY(window.waitForMap(120000));
+    QVERIFY(panel->waitForResult(120000));
+    const Dataset data = readSglog(kRoomLog);
+    const ReferenceMap reference = *window.document()->reference();
+    const ReferenceScore expected =
+        scoreAgainstReference(cliMap(data, settingsOf("hpf", "addition"), 0.1), reference);
+    QCOMPARE(*panel->result()->value("iop_mm"), *expected.value(Metric::Iop));
   }
 
   void closingMidComputationIsSafe() {
