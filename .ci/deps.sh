@@ -20,6 +20,7 @@ packages=(
   libgl1-mesa-dri                           # Mesa software rendering for the GL tests
   xvfb xauth                                # xvfb-run for the GL tests (ctest label gl)
   clang libclang-rt-14-dev                  # libFuzzer + sanitizer runtimes (.ci/fuzz.sh)
+  qemu-user                                 # a CPU without AVX2, emulated (.ci/baseline-cpu.sh)
 )
 
 missing=()
