@@ -62,6 +62,20 @@ struct Footprint {
   void clear() { cells.clear(); }
 };
 
+// Some readings' cells for a model whose every reading gives its cells one of two values (HIMM's
+// axis: free evidence before the echo, the hit at it; SensorModel::listDirect): reading k of those
+// that write cells has cells[k == 0 ? 0 : ends[k − 1] .. ends[k]), the cells its footprint would
+// hold in the same order, and the first frees[k] of them take the first value.
+struct DirectCells {
+  std::vector<std::uint32_t> cells;
+  std::vector<std::uint32_t> ends, frees;
+  void clear() {
+    cells.clear();
+    ends.clear();
+    frees.clear();
+  }
+};
+
 // A reading's cells as runs of consecutive cells of one grid row, with the model's three values
 // side by side: what the cone models hand the rules directly on the mapper's batch path
 // (Mapper::integrateBeams without an observer), where a Footprint would be written and read back

@@ -70,6 +70,11 @@ constexpr std::int64_t kEmptySlot = -1;
 constexpr std::int64_t kHaltedSlot = -2;
 // Set in the pipeline's count of applied footprints when the run stops.
 constexpr std::size_t kHalted = std::size_t{1} << (std::numeric_limits<std::size_t>::digits - 1);
+// The direct path's work item (Mapper::integrateDirect): readings whose cells one thread lists
+// for another to fold in, some 30 µs of work against about a µs of hand-over; and the lists
+// held at once, some 25 kB each on the 100k workload, so that they stay in cache.
+constexpr std::size_t kDirectChunk = 128;
+constexpr std::size_t kDirectSlots = 8;
 // A snapshot's layers are filled on one more thread per this many cells.
 constexpr std::size_t kSnapshotCellsPerThread = 32768;
 // The height of the stripes of rows the threads share out (integrateStripes).
@@ -192,42 +197,104 @@ void waitForChange(const std::atomic<T>& value, T old) {
   value.wait(old, std::memory_order_acquire);
 }
 
-// An ordered pipeline: any thread may compute footprint i once its slot (i mod kSlots) is free;
-// only the applying thread folds them into the grid, strictly in order 0, 1, 2, ...
-struct Pipeline {
+// An ordered pipeline over items 0 .. n − 1 on `threads` threads: any thread may compute item i
+// (compute(i, payload)) once its slot (i mod `slots`) is free; only the calling thread's share,
+// thread 0, applies them (apply(i, payload)), strictly in order 0, 1, 2, ... It looks at `cancel`
+// before every `cancelStride`-th item it applies, and returns false when it stopped there.
+template <class Payload, class Compute, class Apply>
+bool orderedPipeline(std::size_t n, unsigned threads, std::size_t slots, std::size_t cancelStride,
+                     const std::atomic<bool>* cancel, Compute&& computeItem, Apply&& applyItem) {
   struct Slot {
-    Footprint footprint;
-    std::atomic<std::int64_t> holds{kEmptySlot};  // index of the footprint in it, once complete
+    Payload payload;
+    std::atomic<std::int64_t> holds{kEmptySlot};  // index of the item in it, once complete
   };
-  std::vector<Slot> slots{kSlots};
-  std::atomic<std::size_t> next{0};     // next footprint nobody has claimed
-  std::atomic<std::size_t> applied{0};  // footprints folded in so far; kHalted once stopped
+  std::vector<Slot> ring(slots);
+  std::atomic<std::size_t> next{0};     // next item nobody has claimed
+  std::atomic<std::size_t> applied{0};  // items applied so far; kHalted once stopped
   std::atomic<bool> stop{false};
-};
+  auto compute = [&](std::size_t i) {
+    Slot& slot = ring[i % slots];
+    computeItem(i, slot.payload);
+    slot.holds.store(static_cast<std::int64_t>(i), std::memory_order_release);
+    slot.holds.notify_one();
+  };
+  // Stops the run and wakes every thread waiting in it: workers waiting for a slot to be applied
+  // see kHalted in `applied` (it is not advanced, so no worker may overwrite an item the applying
+  // thread is reading), and the applying thread waiting for an item whose worker failed sees its
+  // slot change.
+  auto halt = [&] {
+    stop.store(true);
+    applied.fetch_or(kHalted);
+    applied.notify_all();
+    for (Slot& slot : ring) {
+      slot.holds.store(kHaltedSlot);
+      slot.holds.notify_all();
+    }
+  };
+  auto help = [&] {
+    while (!stop.load(std::memory_order_relaxed)) {
+      const std::size_t i = next.fetch_add(1, std::memory_order_relaxed);
+      if (i >= n) return;
+      // Slot i mod slots still holds item i − slots until that one is applied.
+      for (std::size_t a = applied.load(std::memory_order_acquire);;
+           a = applied.load(std::memory_order_acquire)) {
+        if (a & kHalted) return;
+        if (i < a + slots) break;
+        waitForChange(applied, a);
+      }
+      compute(i);
+    }
+  };
+  bool completed = true;
+  auto apply = [&] {
+    for (std::size_t i = 0; i < n; ++i) {
+      if (cancel && i % cancelStride == 0 && cancel->load(std::memory_order_relaxed)) {
+        completed = false;
+        break;
+      }
+      Slot& slot = ring[i % slots];
+      for (std::int64_t held = slot.holds.load(std::memory_order_acquire);
+           held != static_cast<std::int64_t>(i);
+           held = slot.holds.load(std::memory_order_acquire)) {
+        if (stop.load(std::memory_order_relaxed)) break;
+        // Rather than wait, compute the next unclaimed item if its slot is free.
+        std::size_t j = next.load(std::memory_order_relaxed);
+        if (j < n && j < i + slots &&
+            next.compare_exchange_weak(j, j + 1, std::memory_order_relaxed)) {
+          compute(j);
+          continue;
+        }
+        waitForChange(slot.holds, held);
+      }
+      if (stop.load(std::memory_order_relaxed)) break;
+      applyItem(i, slot.payload);
+      applied.fetch_add(1, std::memory_order_release);  // keeps kHalted
+      applied.notify_all();
+    }
+    halt();  // workers still waiting for a slot (a cancelled run) return
+  };
+  // This thread applies, in order; the others compute items ahead of it.
+  runParallel(
+      threads, [&](unsigned k) { k == 0 ? apply() : help(); }, halt);
+  return completed;
+}
 
 }  // namespace
 
 bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bool>* cancel) {
   const std::size_t n = beams.size();
-  // A model that does not rasterise by rows (HIMM's axis line, a few dozen cells a reading) maps
-  // on one thread: split by stripes, every thread would trace every whole line and then sort its
-  // cells into rows, which cost more than the second thread saved (himm × himm on the 100k
-  // workload, same process, loaded machine: 142–196 ms at 2 threads against 29–49 ms at 1);
-  // through the pipeline, the hand-over of each footprint costs more than tracing it.
+  // Straight into the grid without footprints when the model and rule can (HIMM's axis: its
+  // cells listed on any thread, folded in in order; SensorModel::listDirect).
+  const bool direct = !observer_ && model_->applyDirect(DirectCells{}, *rule_, grid_);
+  // A model that neither rasterises by rows nor lists its cells maps on one thread: split by
+  // stripes, every thread would trace every whole line and then sort its cells into rows, which
+  // cost more than the second thread saved (himm × himm on the 100k workload, same process,
+  // loaded machine: 142–196 ms at 2 threads against 29–49 ms at 1); through the pipeline, the
+  // hand-over of each footprint costs more than tracing it.
   const unsigned threads =
-      n < kParallelMinimum || !model_->rasterisesRows() ? 1u : parallelThreads();
+      n < kParallelMinimum || !(model_->rasterisesRows() || direct) ? 1u : parallelThreads();
+  if (direct) return integrateDirect(beams, cancel, threads);
   if (threads == 1) {
-    // Straight into the grid when the model can (HIMM's axis with the HIMM rule), a run of
-    // readings at a time between looks at the cancel flag.
-    if (!observer_ && model_->integrateDirect(beams.data(), 0, *rule_, grid_)) {
-      for (std::size_t i = 0; i < n; i += kCancelStride) {
-        if (cancel && cancel->load(std::memory_order_relaxed)) return false;
-        const std::size_t count = std::min(kCancelStride, n - i);
-        model_->integrateDirect(beams.data() + i, count, *rule_, grid_);
-        readings_ += count;
-      }
-      return true;
-    }
     const bool totals = rule_->needsTotals();
     EvidenceRuns runs;
     for (std::size_t i = 0; i < n; ++i) {
@@ -257,73 +324,44 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
     return integrateStripes(beams, cancel, std::max(1u, std::min(threads, stripes)));
   }
 
-  Pipeline p;
-  auto compute = [&](std::size_t i) {
-    Pipeline::Slot& slot = p.slots[i % kSlots];
-    slot.footprint.clear();
-    model_->footprint(beams[i], grid_.spec(), *tables_, slot.footprint);
-    slot.holds.store(static_cast<std::int64_t>(i), std::memory_order_release);
-    slot.holds.notify_one();
+  // An observer sees whole footprints in order: computed ahead on the other threads, applied on
+  // this one.
+  return orderedPipeline<Footprint>(
+      n, threads, kSlots, kCancelStride, cancel,
+      [&](std::size_t i, Footprint& fp) {
+        fp.clear();
+        model_->footprint(beams[i], grid_.spec(), *tables_, fp);
+      },
+      [&](std::size_t, const Footprint& fp) { applyFootprint(fp); });
+}
+
+bool Mapper::integrateDirect(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
+                             unsigned threads) {
+  // Chunks of kDirectChunk readings: listed (SensorModel::listDirect) on any thread, folded in
+  // (applyDirect) strictly in order on this one, so every cell sees the readings in log order and
+  // the grid has the bits of the footprint path at any thread count.
+  const std::size_t n = beams.size();
+  const std::size_t chunks = (n + kDirectChunk - 1) / kDirectChunk;
+  auto list = [&](std::size_t c, DirectCells& cells) {
+    cells.clear();
+    const std::size_t begin = c * kDirectChunk;
+    model_->listDirect(beams.data() + begin, std::min(kDirectChunk, n - begin), grid_.spec(),
+                       cells);
   };
-  // Stops the run and wakes every thread waiting in it: workers waiting for a slot to be applied
-  // see kHalted in `applied` (it is not advanced, so no worker may overwrite a footprint the
-  // applying thread is reading), and the applying thread waiting for a footprint whose worker
-  // failed sees its slot change.
-  auto halt = [&p] {
-    p.stop.store(true);
-    p.applied.fetch_or(kHalted);
-    p.applied.notify_all();
-    for (Pipeline::Slot& slot : p.slots) {
-      slot.holds.store(kHaltedSlot);
-      slot.holds.notify_all();
+  auto apply = [&](std::size_t c, const DirectCells& cells) {
+    model_->applyDirect(cells, *rule_, grid_);
+    readings_ += std::min(kDirectChunk, n - c * kDirectChunk);
+  };
+  if (threads == 1) {
+    for (std::size_t i = 0; i < n; i += kCancelStride) {
+      if (cancel && cancel->load(std::memory_order_relaxed)) return false;
+      const std::size_t count = std::min(kCancelStride, n - i);
+      model_->integrateDirect(beams.data() + i, count, *rule_, grid_);
+      readings_ += count;
     }
-  };
-  auto help = [&] {
-    while (!p.stop.load(std::memory_order_relaxed)) {
-      const std::size_t i = p.next.fetch_add(1, std::memory_order_relaxed);
-      if (i >= n) return;
-      // Slot i mod kSlots still holds footprint i − kSlots until that one is applied.
-      for (std::size_t a = p.applied.load(std::memory_order_acquire);;
-           a = p.applied.load(std::memory_order_acquire)) {
-        if (a & kHalted) return;
-        if (i < a + kSlots) break;
-        waitForChange(p.applied, a);
-      }
-      compute(i);
-    }
-  };
-  bool completed = true;
-  auto apply = [&] {
-    for (std::size_t i = 0; i < n; ++i) {
-      if (cancel && i % kCancelStride == 0 && cancel->load(std::memory_order_relaxed)) {
-        completed = false;
-        break;
-      }
-      Pipeline::Slot& slot = p.slots[i % kSlots];
-      for (std::int64_t held = slot.holds.load(std::memory_order_acquire);
-           held != static_cast<std::int64_t>(i);
-           held = slot.holds.load(std::memory_order_acquire)) {
-        if (p.stop.load(std::memory_order_relaxed)) break;
-        // Rather than wait, compute the next unclaimed footprint if its slot is free.
-        std::size_t j = p.next.load(std::memory_order_relaxed);
-        if (j < n && j < i + kSlots &&
-            p.next.compare_exchange_weak(j, j + 1, std::memory_order_relaxed)) {
-          compute(j);
-          continue;
-        }
-        waitForChange(slot.holds, held);
-      }
-      if (p.stop.load(std::memory_order_relaxed)) break;
-      applyFootprint(slot.footprint);
-      p.applied.fetch_add(1, std::memory_order_release);  // keeps kHalted
-      p.applied.notify_all();
-    }
-    halt();  // workers still waiting for a slot (a cancelled run) return
-  };
-  // This thread applies, in order; the others compute footprints ahead of it.
-  runParallel(
-      threads, [&](unsigned k) { k == 0 ? apply() : help(); }, halt);
-  return completed;
+    return true;
+  }
+  return orderedPipeline<DirectCells>(chunks, threads, kDirectSlots, 1, cancel, list, apply);
 }
 
 bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,

@@ -132,6 +132,8 @@ class Mapper {
   bool integrateBeams(const std::vector<Beam>& beams, const std::atomic<bool>* cancel);
   bool integrateStripes(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
                         unsigned threads);
+  bool integrateDirect(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
+                       unsigned threads);
 
   SonarRing ring_;
   MapperSettings settings_;

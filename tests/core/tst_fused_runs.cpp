@@ -3,7 +3,9 @@
 // UpdateRule::applyRuns; no Footprint in between) against the footprint path, the oracle: every
 // cone model × every probabilistic rule, on 1, 2 and 3 threads, with the rows in eight lanes (on a
 // CPU with AVX2) and in four, must leave every plane of the grid and every observed mark with the
-// same bits.
+// same bits. The same for HIMM's axis with every probabilistic rule, whose batch path lists each
+// reading's axis cells and folds them into the grid with one UpdateRule::applyUniform call per
+// value (SensorModel::listDirect, applyDirect), on 1, 2 and 3 threads.
 //
 // Where the expectations come from: the grid of the footprint path itself. A mapper with a
 // FootprintObserver maps through footprint() and UpdateRule::apply() one reading at a time (the
@@ -121,6 +123,8 @@ class TstFusedRuns : public QObject {
  private slots:
   void runsGiveTheFootprintPathsBits_data();
   void runsGiveTheFootprintPathsBits();
+  void himmAxisGivesTheFootprintPathsBits_data();
+  void himmAxisGivesTheFootprintPathsBits();
 };
 
 void TstFusedRuns::runsGiveTheFootprintPathsBits_data() {
@@ -205,6 +209,71 @@ void TstFusedRuns::runsGiveTheFootprintPathsBits() {
       }
     }
     testing::useWideLanes(previous);
+  }
+}
+
+void TstFusedRuns::himmAxisGivesTheFootprintPathsBits_data() {
+  QTest::addColumn<QString>("rule");
+  QTest::addColumn<bool>("noEchoFree");
+  QTest::addColumn<double>("pHit");
+  QTest::addColumn<double>("pMiss");
+  // OctoMap's hit and miss (0.7, 0.4: the model's defaults), and the parameters' limits: certain
+  // evidence (p 1 and 0), where Bayes meets 0/0 in a cell already certain the other way and keeps
+  // it, and log-odds clamps to its floor; a miss of p 0.5 says nothing.
+  const char* const rules[] = {"bayes", "bayes-recursive", "log", "logodds", "dempster-shafer"};
+  for (const char* r : rules) {
+    for (const bool noEcho : {false, true}) {
+      QTest::addRow("himm/%s%s", r, noEcho ? " no_echo=1" : "")
+          << QString(r) << noEcho << 0.7 << 0.4;
+    }
+    QTest::addRow("himm/%s certain", r) << QString(r) << true << 1.0 << 0.0;
+    QTest::addRow("himm/%s miss 0.5", r) << QString(r) << true << 0.9 << 0.5;
+  }
+}
+
+void TstFusedRuns::himmAxisGivesTheFootprintPathsBits() {
+  QFETCH(QString, rule);
+  QFETCH(bool, noEchoFree);
+  QFETCH(double, pHit);
+  QFETCH(double, pMiss);
+  const Dataset& d = workload();
+  MapperSettings settings;
+  settings.model = "himm";
+  settings.rule = rule.toStdString();
+  settings.pose = PoseSource::Truth;
+  settings.parameters = defaultParameters(settings.model, settings.rule);
+  settings.parameters.set("no_echo", noEchoFree ? 1.0 : 0.0);
+  settings.parameters.set("p_hit", pHit);
+  settings.parameters.set("p_miss", pMiss);
+  // The oracle, which also counts the footprints' cells and their echo cells (the one cell of a
+  // footprint that carries p_hit, the last) in the grid.
+  struct Counter final : FootprintObserver {
+    std::size_t cells = 0, echoes = 0;
+    double pHit = 0.0;
+    void reset(std::size_t) override {}
+    void observe(const Footprint& fp) override {
+      cells += fp.cells.size();
+      for (const CellEvidence& c : fp.cells) echoes += c.probability == static_cast<float>(pHit);
+    }
+  } counter;
+  counter.pHit = pHit;
+  Mapper oracle(d.ring, smallGrid(), settings);
+  oracle.setObserver(&counter);
+  {
+    ScopedThreadCount one(1);
+    QVERIFY(oracle.mapDataset(d));
+  }
+  // Not an empty comparison: the axes wrote cells, hundreds of them echoes.
+  QVERIFY(counter.cells > 10000);
+  QVERIFY(counter.echoes > 100);
+  for (const unsigned threads : {1u, 2u, 3u}) {
+    ScopedThreadCount count(threads);
+    Mapper direct(d.ring, smallGrid(), settings);
+    QVERIFY(direct.mapDataset(d));
+    QCOMPARE(direct.readingsIntegrated(), d.readingCount());
+    QVERIFY2(
+        sameGrid(settings.rule, oracle.storage(), direct.storage()),
+        qPrintable(QString("%1 threads: the grid differs from the footprint path's").arg(threads)));
   }
 }
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <set>
 #include <thread>
+#include <utility>
 
 #include "sonargrid/concurrency.h"
 #include "sonargrid/io/sglog.h"
@@ -162,7 +163,8 @@ void TstMapper::himmDirectEqualsFootprints_data() {
 }
 
 // A batch re-map with HIMM's model and rule folds the axis straight into the grid
-// (SensorModel::integrateDirect); scan by scan goes through footprints and the rule's apply(). The
+// (SensorModel::listDirect, applyDirect); scan by scan goes through footprints and the rule's
+// apply(). The
 // two must leave the same bytes, on a grid that the corridor's beams leave on every side, so that
 // some axis cells fall outside it and are skipped.
 void TstMapper::himmDirectEqualsFootprints() {
@@ -281,15 +283,17 @@ void TstMapper::cancelMidRun() {
 }
 
 void TstMapper::cancelStripes() {
-  // Without an observer a large log is mapped in stripes of rows, one set per thread. Cancelled
-  // before it starts: nothing is integrated. Cancelled from another thread while it runs (the flag
-  // may come after the end on a fast machine): either way the same mapper then maps the whole log
-  // exactly as a fresh one.
+  // Without an observer a large log is mapped in stripes of rows, one set per thread (HIMM's
+  // axis: listed on any thread, folded in in order). Cancelled before it starts: nothing is
+  // integrated. Cancelled from another thread while it runs (the flag may come after the end on a
+  // fast machine): either way the same mapper then maps the whole log exactly as a fresh one.
   const Dataset& d = room();
   const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
-  for (const char* rule : {"bayes", "addition"}) {  // addition normalises: threads in step
+  // Addition normalises: threads in step.
+  for (const auto& [model, rule] : {std::pair{"hpf", "bayes"}, std::pair{"hpf", "addition"},
+                                    std::pair{"himm", "himm"}, std::pair{"himm", "logodds"}}) {
     MapperSettings s;
-    s.model = "hpf";
+    s.model = model;
     s.rule = rule;
     Mapper m(d.ring, grid, s);
     std::atomic<bool> stop{true};
@@ -313,11 +317,12 @@ void TstMapper::cancelStripes() {
 }
 
 void TstMapper::stripesForEveryRuleKind_data() {
-  // The three ways a large log is mapped on several threads, each bit-identical to one thread
-  // scan by scan, at any thread count (the policy's, concurrency.h): stripes of rows (Bayes; HIMM's
-  // axis line, each thread tracing every line and keeping its rows), stripes in step sharing each
-  // footprint's total (addition with normalisation, which scales a footprint by its sum), and, with
-  // an observer, the ordered pipeline. 3 threads do not divide the rows evenly; 8 are more than
+  // The four ways a large log is mapped on several threads, each bit-identical to one thread
+  // scan by scan, at any thread count (the policy's, concurrency.h): stripes of rows (Bayes),
+  // stripes in step sharing each footprint's total (addition with normalisation, which scales a
+  // footprint by its sum), HIMM's axis cells listed on any thread and folded in in order
+  // (Mapper::integrateDirect; with its own rule and a probabilistic one), and, with an observer,
+  // the ordered pipeline of footprints. 3 threads do not divide the rows evenly; 8 are more than
   // this machine may have.
   QTest::addColumn<QString>("model");
   QTest::addColumn<QString>("rule");
@@ -333,7 +338,8 @@ void TstMapper::stripesForEveryRuleKind_data() {
   for (const Case& c :
        {Case{"parameterized", "bayes", -1, false}, Case{"hpf", "addition", 1, false},
         Case{"hpf", "addition", 0, false}, Case{"murphy", "addition", 1, false},
-        Case{"himm", "himm", -1, false}, Case{"konolige", "logodds", -1, true}}) {
+        Case{"himm", "himm", -1, false}, Case{"himm", "dempster-shafer", -1, false},
+        Case{"konolige", "logodds", -1, true}}) {
     for (unsigned threads : {1u, 2u, 3u, 8u}) {
       QTest::addRow("%s x %s%s%s, threads %u", c.model, c.rule,
                     c.normalise == 0 ? " (not normalised)" : "", c.observer ? ", observed" : "",

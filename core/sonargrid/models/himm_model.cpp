@@ -7,9 +7,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
+#include <vector>
 
-#include "sonargrid/models/cone_model.h"
 #include "sonargrid/grid.h"
+#include "sonargrid/models/cone_model.h"
 #include "sonargrid/models/model_classes.h"
 #include "sonargrid/rules/update_rule.h"
 
@@ -25,6 +27,9 @@ class HimmModel final : public SensorModel {
   double reach(double maxRange) const override;
   void footprint(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
                  Footprint& out) const override;
+  bool listDirect(const Beam* beams, std::size_t count, const GridSpec& grid,
+                  DirectCells& out) const override;
+  bool applyDirect(const DirectCells& cells, const UpdateRule& rule, Grid& grid) const override;
   bool integrateDirect(const Beam* beams, std::size_t count, const UpdateRule& rule,
                        Grid& grid) const override;
 
@@ -162,14 +167,80 @@ void HimmModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTabl
   out.cells.resize(static_cast<std::size_t>(writer.dst - out.cells.data()));
 }
 
+bool HimmModel::listDirect(const Beam* beams, std::size_t count, const GridSpec& grid,
+                           DirectCells& out) const {
+  // Each reading's axis cells in the grid, as footprint() lists them (the echo's last).
+  struct Collector {
+    const GridSpec& grid;
+    std::vector<std::uint32_t>& cells;
+    std::size_t start = cells.size();
+    std::uint32_t* dst = nullptr;
+    bool lastInside = false;
+    void reserve(std::size_t n) {
+      cells.resize(start + n);
+      dst = cells.data() + start;
+    }
+    void operator()(int x, int y, bool isLast) {
+      const bool inside = static_cast<unsigned>(x) < static_cast<unsigned>(grid.width) &&
+                          static_cast<unsigned>(y) < static_cast<unsigned>(grid.height);
+      *dst = static_cast<std::uint32_t>(y * grid.width + x);
+      dst += inside ? 1 : 0;
+      lastInside = isLast && inside;
+    }
+  };
+  for (std::size_t i = 0; i < count; ++i) {
+    const Beam& beam = beams[i];
+    const bool echo = beam.echo();
+    if (!echo && !noEchoFree_) continue;
+    Collector collect{grid, out.cells};
+    traceAxis(beam, echo ? beam.range : beam.maxRange, grid, collect);
+    const auto end = static_cast<std::uint32_t>(collect.dst - out.cells.data());
+    out.cells.resize(end);
+    out.ends.push_back(end);
+    out.frees.push_back(end - static_cast<std::uint32_t>(collect.start) -
+                        (echo && collect.lastInside ? 1u : 0u));
+  }
+  return true;
+}
+
+bool HimmModel::applyDirect(const DirectCells& list, const UpdateRule& rule, Grid& grid) const {
+  // A one-byte rule says what each kind of cell does to every value a cell can hold: the axis
+  // cells then take a table look-up each. Any other rule that takes one value for many cells
+  // (UpdateRule::applyUniform) gets a reading's free cells in one call and its echo's cell in
+  // another. The cells of one reading are distinct, so their order within it does not matter.
+  const CellEvidence free = freeEvidence(), hit = hitEvidence();
+  std::array<std::uint8_t, 256> freeStep{}, hitStep{};
+  const bool bytes = rule.byteTransition(free, freeStep) && rule.byteTransition(hit, hitStep);
+  if (!bytes && !rule.applyUniform(free, {}, grid)) return false;
+  std::uint8_t* const cv = bytes ? grid.bytes(0) : nullptr;
+  const std::span<const std::uint32_t> all(list.cells);
+  std::size_t begin = 0;
+  for (std::size_t k = 0; k < list.ends.size(); ++k) {
+    const std::span<const std::uint32_t> cells = all.subspan(begin, list.ends[k] - begin);
+    const std::size_t frees = list.frees[k];
+    if (bytes) {
+      for (std::size_t j = 0; j < cells.size(); ++j) {
+        const std::uint32_t c = cells[j];
+        cv[c] = (j < frees ? freeStep : hitStep)[cv[c]];
+      }
+    } else {
+      rule.applyUniform(free, cells.first(frees), grid);
+      if (frees < cells.size()) rule.applyUniform(hit, cells.subspan(frees), grid);
+    }
+    for (const std::uint32_t c : cells) grid.markWritten(c);
+    begin = list.ends[k];
+  }
+  return true;
+}
+
 bool HimmModel::integrateDirect(const Beam* beams, std::size_t count, const UpdateRule& rule,
                                 Grid& grid) const {
-  // A one-byte rule says what each kind of cell does to every value a cell can hold: the axis
-  // cells then take a table look-up each, with the footprint's cells in the same order.
+  // A one-byte rule: each axis cell takes its table look-up as it is traced, with no list between
+  // (a third faster on one thread than listing first).
   std::array<std::uint8_t, 256> freeStep{}, hitStep{};
   if (!rule.byteTransition(freeEvidence(), freeStep) ||
       !rule.byteTransition(hitEvidence(), hitStep)) {
-    return false;
+    return SensorModel::integrateDirect(beams, count, rule, grid);
   }
   struct Updater {
     Grid& grid;
@@ -191,8 +262,7 @@ bool HimmModel::integrateDirect(const Beam* beams, std::size_t count, const Upda
     const Beam& beam = beams[i];
     const bool echo = beam.echo();
     if (!echo && !noEchoFree_) continue;
-    Updater updater{grid, grid.bytes(0), freeStep.data(),
-                    echo ? hitStep.data() : freeStep.data()};
+    Updater updater{grid, grid.bytes(0), freeStep.data(), echo ? hitStep.data() : freeStep.data()};
     traceAxis(beam, echo ? beam.range : beam.maxRange, grid.spec(), updater);
   }
   return true;

@@ -71,17 +71,29 @@ class SensorModel {
                              RowWindow window, Footprint& out) const;
   // Whether footprintRows() rasterises only the window's rows, so that it costs about the window's
   // share of footprint() (the cone models; the default above computes the whole footprint and
-  // filters it). The mapper splits a batch between threads by stripes of rows only for such a
-  // model and maps the others (HIMM's axis line) on one thread (Mapper::integrateBeams).
+  // filters it). The mapper splits a batch between threads by stripes of rows for such a model.
   virtual bool rasterisesRows() const { return false; }
-  // Folds beams[0, count) into `grid` as footprint(), `rule`.apply() and Grid::markWritten() would,
-  // one beam after another, to the same bits, but without a footprint between them. Returns false,
-  // having done nothing, when the model has no such path for this rule (this default): then the
-  // mapper goes through footprints. HIMM's axis with a one-byte rule has one (himm_model.cpp).
-  virtual bool integrateDirect(const Beam* /*beams*/, std::size_t /*count*/,
-                               const UpdateRule& /*rule*/, Grid& /*grid*/) const {
+  // For a model whose every reading gives its cells one of two values (HIMM's axis), the batch
+  // path without footprints: listDirect() appends the cells of beams[0, count) to `out`
+  // (DirectCells, footprint.h), on any thread; applyDirect() folds such a list into `grid` as
+  // footprint(), `rule`.apply() and Grid::markWritten() would, one beam after another, to the same
+  // bits. applyDirect() returns false, having done nothing, when the model has no such path for
+  // the rule, and listDirect() when the model has none at all (these defaults): the mapper then
+  // goes through footprints. With several threads the mapper lists the next readings' cells on one
+  // while another folds the earlier ones in, in order (Mapper::integrateDirect).
+  virtual bool listDirect(const Beam* /*beams*/, std::size_t /*count*/, const GridSpec& /*grid*/,
+                          DirectCells& /*out*/) const {
     return false;
   }
+  virtual bool applyDirect(const DirectCells& /*cells*/, const UpdateRule& /*rule*/,
+                           Grid& /*grid*/) const {
+    return false;
+  }
+  // The two in one go on this thread (the mapper's path on one thread); false as applyDirect().
+  // This default lists, then folds; HIMM's axis with a one-byte rule folds each cell as it is
+  // traced.
+  virtual bool integrateDirect(const Beam* beams, std::size_t count, const UpdateRule& rule,
+                               Grid& grid) const;
   // The cells of footprintRows(), with the same values, appended to `out` as runs of consecutive
   // cells (footprint.h), without a Footprint in between. Returns false, leaving `out` as it was,
   // for a model that cannot (the default; HIMM): the caller then uses footprintRows().

@@ -32,6 +32,14 @@ void DempsterShaferRule::apply(const Footprint& fp, Grid& grid) const {
     cellrule::dempsterShafer(c.occupied, c.empty, cells[c.cell]);
 }
 
+bool DempsterShaferRule::applyUniform(const CellEvidence& evidence,
+                                      std::span<const std::uint32_t> cells, Grid& grid) const {
+  DempsterShaferCell* const g = grid.cells<DempsterShaferCell>();
+  for (const std::uint32_t c : cells)
+    cellrule::dempsterShafer(evidence.occupied, evidence.empty, g[c]);
+  return true;
+}
+
 void DempsterShaferRule::applyRuns(const EvidenceRuns& runs, Grid& grid,
                                    Footprint* /*deferred*/) const {
   runs::dempsterShafer(runs, grid.cells<DempsterShaferCell>());

@@ -49,6 +49,15 @@ void LogOddsRule::apply(const Footprint& fp, Grid& grid) const {
     cellrule::logOdds(c.probability, invPrior, minOdds_, maxOdds_, cells[c.cell]);
 }
 
+bool LogOddsRule::applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
+                               Grid& grid) const {
+  LogOddsCell* const g = grid.cells<LogOddsCell>();
+  const double invPrior = 1.0 / priorOdds_;
+  for (const std::uint32_t c : cells)
+    cellrule::logOdds(evidence.probability, invPrior, minOdds_, maxOdds_, g[c]);
+  return true;
+}
+
 void LogOddsRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* /*deferred*/) const {
   runs::logOdds(runs, grid.cells<LogOddsCell>(), 1.0 / priorOdds_, minOdds_, maxOdds_);
 }

@@ -41,6 +41,13 @@ void LogRule::apply(const Footprint& fp, Grid& grid) const {
   for (const CellEvidence& c : fp.cells) cellrule::logProduct(c.empty, c.occupied, cells[c.cell]);
 }
 
+bool LogRule::applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
+                           Grid& grid) const {
+  LogCell* const g = grid.cells<LogCell>();
+  for (const std::uint32_t c : cells) cellrule::logProduct(evidence.empty, evidence.occupied, g[c]);
+  return true;
+}
+
 void LogRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* /*deferred*/) const {
   runs::logProduct(runs, grid.cells<LogCell>());
 }

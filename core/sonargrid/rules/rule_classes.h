@@ -61,6 +61,8 @@ class BayesRule final : public RuleOnCells<BayesRule, BayesCell> {
   CellLayout layout() const override { return CellLayout::of(BayesCell{prior_}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
   void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
+  bool applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
+                    Grid& grid) const override;
 
   double occupancyOf(const BayesCell& c) const { return c.p; }
   double nativeOf(const BayesCell& c) const { return c.p; }
@@ -83,6 +85,8 @@ class LogRule final : public RuleOnCells<LogRule, LogCell> {
   CellLayout layout() const override { return CellLayout::of(LogCell{1.0}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
   void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
+  bool applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
+                    Grid& grid) const override;
 
   double occupancyOf(const LogCell& c) const;
   double nativeOf(const LogCell& c) const;
@@ -104,6 +108,8 @@ class LogOddsRule final : public RuleOnCells<LogOddsRule, LogOddsCell> {
   CellLayout layout() const override { return CellLayout::of(LogOddsCell{priorOdds_}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
   void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
+  bool applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
+                    Grid& grid) const override;
 
   double occupancyOf(const LogOddsCell& c) const;
   double nativeOf(const LogOddsCell& c) const;
@@ -156,6 +162,8 @@ class DempsterShaferRule final : public RuleOnCells<DempsterShaferRule, Dempster
   CellLayout layout() const override { return CellLayout::of(DempsterShaferCell{0.0, 0.0}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
   void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
+  bool applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
+                    Grid& grid) const override;
 
   double occupancyOf(const DempsterShaferCell& c) const;
   double nativeOf(const DempsterShaferCell& c) const { return c.occ - c.emp; }

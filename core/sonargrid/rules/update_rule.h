@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -68,9 +69,21 @@ class UpdateRule {
   // For a rule that keeps one byte per cell (HIMM): the value apply() leaves in a cell that held
   // v, for every v, when the cell is given `evidence`, as table[v]. Returns false, the table
   // untouched, for any other rule. A model whose footprint gives many cells the same evidence can
-  // then map straight into the grid (SensorModel::integrateDirect).
+  // then map straight into the grid (SensorModel::applyDirect).
   virtual bool byteTransition(const CellEvidence& /*evidence*/,
                               std::array<std::uint8_t, 256>& /*table*/) const {
+    return false;
+  }
+
+  // Applies `evidence` to each of `cells` (grid indices, each at most once), leaving the bits
+  // apply() leaves for a footprint of those cells all carrying `evidence`; the grid's marks are
+  // the caller's. Returns false, with nothing applied, for a rule that offers no such update: one
+  // with totals (whose cells wait for the reading's total) or a one-byte rule (byteTransition() is
+  // its way). A model whose footprint gives many cells one value (HIMM's axis: the free cells, then
+  // the echo) can then map straight into the grid (SensorModel::applyDirect), with one call a value
+  // rather than a Footprint.
+  virtual bool applyUniform(const CellEvidence& /*evidence*/,
+                            std::span<const std::uint32_t> /*cells*/, Grid& /*grid*/) const {
     return false;
   }
 
