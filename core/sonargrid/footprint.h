@@ -63,9 +63,11 @@ struct Footprint {
 };
 
 // Some readings' cells for a model whose every reading gives its cells one of two values (HIMM's
-// axis: free evidence before the echo, the hit at it; SensorModel::listDirect): reading k of those
-// that write cells has cells[k == 0 ? 0 : ends[k − 1] .. ends[k]), the cells its footprint would
-// hold in the same order, and the first frees[k] of them take the first value.
+// axis: free evidence before the echo, the hit at it; SensorModel::listDirect): entry k, one per
+// reading the model writes with (those it skips, such as no-echo readings left alone, have none;
+// an entry may hold no cell when they all lie outside the grid), has cells[k == 0 ? 0 :
+// ends[k − 1] .. ends[k]), the cells its footprint would hold in the same order, and the first
+// frees[k] of them take the first value.
 struct DirectCells {
   std::vector<std::uint32_t> cells;
   std::vector<std::uint32_t> ends, frees;

@@ -68,7 +68,7 @@ constexpr std::size_t kParallelMinimum = 4096;
 constexpr std::size_t kSlots = 64;
 constexpr std::int64_t kEmptySlot = -1;
 constexpr std::int64_t kHaltedSlot = -2;
-// Set in the pipeline's count of applied footprints when the run stops.
+// Set in the pipeline's count of applied items when the run stops.
 constexpr std::size_t kHalted = std::size_t{1} << (std::numeric_limits<std::size_t>::digits - 1);
 // The direct path's work item (Mapper::integrateDirect): readings whose cells one thread lists
 // for another to fold in, some 30 µs of work against about a µs of hand-over; and the lists
@@ -174,14 +174,14 @@ bool Mapper::mapDataset(const Dataset& dataset, double until, const std::atomic<
 
 namespace {
 
-// Waits until `value` differs from `old`. A footprint takes some 10 µs, so the wait is usually
-// over within a short spin; sleeping at once would cost a futex call and a wake-up per footprint
-// on each side. After a short spin the thread yields before it sleeps: on a machine with more
-// threads than free CPUs (a shared machine, a batch node, more --threads than CPUs) the thread we
-// wait for is often waiting for a CPU, and a yield gives it ours at once where a long spin burnt
-// it and a sleep added two context switches. Measured on the office log at 2 threads on a 2-CPU
-// machine under a load of 7: himm × himm 247 → 110 ms, hpf × addition 1551 → 1339 ms (medians of
-// 7; 512 pauses and no yield before).
+// Waits until `value` differs from `old`. A footprint takes some 10 µs (a chunk of HIMM's axis
+// cells some 30 µs), so the wait is usually over within a short spin; sleeping at once would cost
+// a futex call and a wake-up per item on each side. After a short spin the thread yields before it
+// sleeps: on a machine with more threads than free CPUs (a shared machine, a batch node, more
+// --threads than CPUs) the thread we wait for is often waiting for a CPU, and a yield gives it ours
+// at once where a long spin burnt it and a sleep added two context switches. Measured on the office
+// log at 2 threads on a 2-CPU machine under a load of 7: himm × himm 247 → 110 ms, hpf × addition
+// 1551 → 1339 ms (medians of 7; 512 pauses and no yield before).
 template <class T>
 void waitForChange(const std::atomic<T>& value, T old) {
   for (int k = 0; k < 64; ++k) {
@@ -285,7 +285,9 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
   const std::size_t n = beams.size();
   // Straight into the grid without footprints when the model and rule can (HIMM's axis: its
   // cells listed on any thread, folded in in order; SensorModel::listDirect).
-  const bool direct = !observer_ && model_->applyDirect(DirectCells{}, *rule_, grid_);
+  DirectCells probe;
+  const bool direct = !observer_ && model_->listDirect(beams.data(), 0, grid_.spec(), probe) &&
+                      model_->applyDirect(probe, *rule_, grid_);
   // A model that neither rasterises by rows nor lists its cells maps on one thread: split by
   // stripes, every thread would trace every whole line and then sort its cells into rows, which
   // cost more than the second thread saved (himm × himm on the 100k workload, same process,
@@ -353,11 +355,21 @@ bool Mapper::integrateDirect(const std::vector<Beam>& beams, const std::atomic<b
     readings_ += std::min(kDirectChunk, n - c * kDirectChunk);
   };
   if (threads == 1) {
-    for (std::size_t i = 0; i < n; i += kCancelStride) {
+    // Traced and folded in at once where the model can (HIMM's axis with its one-byte rule), else
+    // listed and folded, a chunk at a time between looks at the cancel flag.
+    const bool fused = model_->integrateDirect(beams.data(), 0, *rule_, grid_);
+    DirectCells cells;
+    for (std::size_t c = 0; c < chunks; ++c) {
       if (cancel && cancel->load(std::memory_order_relaxed)) return false;
-      const std::size_t count = std::min(kCancelStride, n - i);
-      model_->integrateDirect(beams.data() + i, count, *rule_, grid_);
-      readings_ += count;
+      if (fused) {
+        const std::size_t begin = c * kDirectChunk;
+        const std::size_t count = std::min(kDirectChunk, n - begin);
+        model_->integrateDirect(beams.data() + begin, count, *rule_, grid_);
+        readings_ += count;
+      } else {
+        list(c, cells);
+        apply(c, cells);
+      }
     }
     return true;
   }

@@ -3,9 +3,9 @@
 // UpdateRule::applyRuns; no Footprint in between) against the footprint path, the oracle: every
 // cone model × every probabilistic rule, on 1, 2 and 3 threads, with the rows in eight lanes (on a
 // CPU with AVX2) and in four, must leave every plane of the grid and every observed mark with the
-// same bits. The same for HIMM's axis with every probabilistic rule, whose batch path lists each
-// reading's axis cells and folds them into the grid with one UpdateRule::applyUniform call per
-// value (SensorModel::listDirect, applyDirect), on 1, 2 and 3 threads.
+// same bits. The same for HIMM's axis with every rule, whose batch path lists each reading's axis
+// cells and folds them into the grid with one UpdateRule::applyUniform call per value (the HIMM
+// rule: a table look-up per cell; SensorModel::listDirect, applyDirect), on 1, 2 and 3 threads.
 //
 // Where the expectations come from: the grid of the footprint path itself. A mapper with a
 // FootprintObserver maps through footprint() and UpdateRule::apply() one reading at a time (the
@@ -112,6 +112,7 @@ bool sameGrid(const std::string& rule, const Grid& a, const Grid& b) {
   if (rule == "log") return samePlanes<LogCell>(a, b);
   if (rule == "logodds") return samePlanes<LogOddsCell>(a, b);
   if (rule == "dempster-shafer") return samePlanes<DempsterShaferCell>(a, b);
+  if (rule == "himm") return samePlanes<HimmCell>(a, b);
   return false;
 }
 
@@ -220,7 +221,10 @@ void TstFusedRuns::himmAxisGivesTheFootprintPathsBits_data() {
   // OctoMap's hit and miss (0.7, 0.4: the model's defaults), and the parameters' limits: certain
   // evidence (p 1 and 0), where Bayes meets 0/0 in a cell already certain the other way and keeps
   // it, and log-odds clamps to its floor; a miss of p 0.5 says nothing.
-  const char* const rules[] = {"bayes", "bayes-recursive", "log", "logodds", "dempster-shafer"};
+  // With its own rule too, whose one-byte cells take a table look-up (UpdateRule::byteTransition):
+  // on one thread fused with the trace, on several listed and folded.
+  const char* const rules[] = {"bayes",   "bayes-recursive", "log",
+                               "logodds", "dempster-shafer", "himm"};
   for (const char* r : rules) {
     for (const bool noEcho : {false, true}) {
       QTest::addRow("himm/%s%s", r, noEcho ? " no_echo=1" : "")

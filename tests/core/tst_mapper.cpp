@@ -162,11 +162,11 @@ void TstMapper::himmDirectEqualsFootprints_data() {
   QTest::newRow("miss says nothing") << 3.0 << 1.0 << 15.0 << 0.7 << 0.5 << 1.0;
 }
 
-// A batch re-map with HIMM's model and rule folds the axis straight into the grid
-// (SensorModel::listDirect, applyDirect); scan by scan goes through footprints and the rule's
-// apply(). The
-// two must leave the same bytes, on a grid that the corridor's beams leave on every side, so that
-// some axis cells fall outside it and are skipped.
+// A batch re-map with HIMM's model and rule folds the axis straight into the grid (on one thread,
+// as this short log is mapped: SensorModel::integrateDirect); scan by scan goes through footprints
+// and the rule's apply(). The two must leave the same bytes, on a grid that the corridor's beams
+// leave on every side, so that some axis cells fall outside it and are skipped. (tst_fused_runs
+// covers the listed path on several threads.)
 void TstMapper::himmDirectEqualsFootprints() {
   QFETCH(double, increment);
   QFETCH(double, decrement);
@@ -289,6 +289,7 @@ void TstMapper::cancelStripes() {
   // fast machine): either way the same mapper then maps the whole log exactly as a fresh one.
   const Dataset& d = room();
   const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
+  const ScopedThreadCount policy(3);  // several threads whatever the machine's CPUs
   // Addition normalises: threads in step.
   for (const auto& [model, rule] : {std::pair{"hpf", "bayes"}, std::pair{"hpf", "addition"},
                                     std::pair{"himm", "himm"}, std::pair{"himm", "logodds"}}) {

@@ -240,7 +240,7 @@ bool HimmModel::integrateDirect(const Beam* beams, std::size_t count, const Upda
   std::array<std::uint8_t, 256> freeStep{}, hitStep{};
   if (!rule.byteTransition(freeEvidence(), freeStep) ||
       !rule.byteTransition(hitEvidence(), hitStep)) {
-    return SensorModel::integrateDirect(beams, count, rule, grid);
+    return false;
   }
   struct Updater {
     Grid& grid;

@@ -93,11 +93,4 @@ void SensorModel::footprintRows(const Beam& beam, const GridSpec& grid, const Be
   out.cells.erase(kept, out.cells.end());
 }
 
-bool SensorModel::integrateDirect(const Beam* beams, std::size_t count, const UpdateRule& rule,
-                                  Grid& grid) const {
-  thread_local DirectCells cells;  // its buffers kept from call to call
-  cells.clear();
-  return listDirect(beams, count, grid.spec(), cells) && applyDirect(cells, rule, grid);
-}
-
 }  // namespace sg

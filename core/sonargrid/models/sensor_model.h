@@ -89,11 +89,13 @@ class SensorModel {
                            Grid& /*grid*/) const {
     return false;
   }
-  // The two in one go on this thread (the mapper's path on one thread); false as applyDirect().
-  // This default lists, then folds; HIMM's axis with a one-byte rule folds each cell as it is
-  // traced.
-  virtual bool integrateDirect(const Beam* beams, std::size_t count, const UpdateRule& rule,
-                               Grid& grid) const;
+  // The two fused, each cell folded in as it is traced (the mapper's path on one thread, where a
+  // list only costs): false, having done nothing, where the model has no such path for the rule
+  // (this default; HIMM's axis has one for a one-byte rule), and then the mapper lists and folds.
+  virtual bool integrateDirect(const Beam* /*beams*/, std::size_t /*count*/,
+                               const UpdateRule& /*rule*/, Grid& /*grid*/) const {
+    return false;
+  }
   // The cells of footprintRows(), with the same values, appended to `out` as runs of consecutive
   // cells (footprint.h), without a Footprint in between. Returns false, leaving `out` as it was,
   // for a model that cannot (the default; HIMM): the caller then uses footprintRows().
