@@ -100,9 +100,11 @@ namespace {
 
 // Calls emit(x, y, last) for every cell the axis segment of `beam` passes through, `length`
 // metres long, in order from the sensor, each once (Amanatides & Woo 1987, in cell units), with
-// last = true for the final cell only; x and y may lie outside the grid. The step is chosen
-// without a branch, as it follows the slope's pattern, which a branch predictor misses about once
-// a cell; the arithmetic is that of Amanatides & Woo, so the cells are the same.
+// last = true for the final cell only; x and y may lie outside the grid. The step is written as a
+// select, but GCC 12 at -O2 still compiles it to a branch on the comparison (perf annotate,
+// 2026-11-27), which the slope's pattern makes hard to predict (docs/performance.md, "HIMM: every
+// rule straight into the grid"). The arithmetic is that of Amanatides & Woo, so the cells are the
+// same.
 template <class Emit>
 void traceAxis(const Beam& beam, double length, const GridSpec& grid, Emit&& emit) {
   const double c = grid.cellSize;
