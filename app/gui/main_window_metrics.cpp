@@ -84,14 +84,13 @@ MetricsDocks installMetrics(MainWindow* window) {
   QObject::connect(remap, &ui::RemapController::started, panel, &ui::MetricsPanel::awaitMap);
   // No map of that re-map is coming (it failed, or was stopped with nothing newer after it): the
   // panel scores the map it has.
+  auto resumeIfNewest = [panel, remap](quint64 generation) {
+    if (generation == remap->latestGeneration()) panel->resume();
+  };
   QObject::connect(remap, &ui::RemapController::failed, panel,
-                   [panel, remap](const QString&, quint64 generation) {
-                     if (generation == remap->latestGeneration()) panel->resume();
-                   });
+                   [resumeIfNewest](const QString&, quint64 g) { resumeIfNewest(g); });
   QObject::connect(remap, &ui::RemapController::cancelled, panel,
-                   [panel, remap](quint64 generation, bool) {
-                     if (generation == remap->latestGeneration()) panel->resume();
-                   });
+                   [resumeIfNewest](quint64 g, bool) { resumeIfNewest(g); });
   QObject::connect(panel, &ui::MetricsPanel::dminTintChanged, window->gridView(),
                    &ui::GridView::setDminTint);
   // Each reference edit (the editor's steps reach the Document) scores the shown map again.

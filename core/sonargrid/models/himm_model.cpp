@@ -98,6 +98,13 @@ double HimmModel::reach(double maxRange) const {
 
 namespace {
 
+// Whether cell (x, y) of traceAxis() lies in `grid`: one unsigned comparison per axis, as a
+// negative index wraps past the grid's size.
+inline bool inGrid(int x, int y, const GridSpec& grid) {
+  return static_cast<unsigned>(x) < static_cast<unsigned>(grid.width) &&
+         static_cast<unsigned>(y) < static_cast<unsigned>(grid.height);
+}
+
 // Calls emit(x, y, last) for every cell the axis segment of `beam` passes through, `length`
 // metres long, in order from the sensor, each once (Amanatides & Woo 1987, in cell units), with
 // last = true for the final cell only; x and y may lie outside the grid. The step is written as a
@@ -159,10 +166,7 @@ void HimmModel::footprint(const Beam& beam, const GridSpec& grid, const BeamTabl
     void operator()(int x, int y, bool isLast) {
       *dst = isLast ? last : free;
       dst->cell = static_cast<std::uint32_t>(y * grid.width + x);
-      dst += static_cast<unsigned>(x) < static_cast<unsigned>(grid.width) &&
-                     static_cast<unsigned>(y) < static_cast<unsigned>(grid.height)
-                 ? 1
-                 : 0;
+      dst += inGrid(x, y, grid) ? 1 : 0;
     }
   } writer{out, grid, free, last};
   traceAxis(beam, echo ? beam.range : beam.maxRange, grid, writer);
@@ -183,8 +187,7 @@ bool HimmModel::listDirect(const Beam* beams, std::size_t count, const GridSpec&
       dst = cells.data() + start;
     }
     void operator()(int x, int y, bool isLast) {
-      const bool inside = static_cast<unsigned>(x) < static_cast<unsigned>(grid.width) &&
-                          static_cast<unsigned>(y) < static_cast<unsigned>(grid.height);
+      const bool inside = inGrid(x, y, grid);
       *dst = static_cast<std::uint32_t>(y * grid.width + x);
       dst += inside ? 1 : 0;
       lastInside = isLast && inside;
@@ -251,10 +254,7 @@ bool HimmModel::integrateDirect(const Beam* beams, std::size_t count, const Upda
     void reserve(std::size_t /*cells*/) {}
     void operator()(int x, int y, bool isLast) {
       const GridSpec& spec = grid.spec();
-      if (static_cast<unsigned>(x) >= static_cast<unsigned>(spec.width) ||
-          static_cast<unsigned>(y) >= static_cast<unsigned>(spec.height)) {
-        return;
-      }
+      if (!inGrid(x, y, spec)) return;
       const auto cell = static_cast<std::uint32_t>(y * spec.width + x);
       cv[cell] = (isLast ? last : free)[cv[cell]];
       grid.markWritten(cell);
