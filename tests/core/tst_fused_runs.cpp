@@ -116,6 +116,18 @@ bool sameGrid(const std::string& rule, const Grid& a, const Grid& b) {
   return false;
 }
 
+// Settings of a row: true poses (the workload's odometry is its truth), the pair's defaults, and
+// no-echo updates on or off.
+MapperSettings rowSettings(const std::string& model, const std::string& rule, bool noEchoFree) {
+  MapperSettings settings;
+  settings.model = model;
+  settings.rule = rule;
+  settings.pose = PoseSource::Truth;
+  settings.parameters = defaultParameters(model, rule);
+  settings.parameters.set("no_echo", noEchoFree ? 1.0 : 0.0);
+  return settings;
+}
+
 }  // namespace
 
 class TstFusedRuns : public QObject {
@@ -160,12 +172,7 @@ void TstFusedRuns::runsGiveTheFootprintPathsBits() {
   QFETCH(bool, noEchoFree);
   QFETCH(bool, normalise);
   const Dataset& d = workload();
-  MapperSettings settings;
-  settings.model = model.toStdString();
-  settings.rule = rule.toStdString();
-  settings.pose = PoseSource::Truth;
-  settings.parameters = defaultParameters(settings.model, settings.rule);
-  settings.parameters.set("no_echo", noEchoFree ? 1.0 : 0.0);
+  MapperSettings settings = rowSettings(model.toStdString(), rule.toStdString(), noEchoFree);
   if (settings.rule == "addition") settings.parameters.set("normalise", normalise ? 1.0 : 0.0);
 
   // The oracle: the footprint path, one reading at a time.
@@ -241,12 +248,7 @@ void TstFusedRuns::himmAxisGivesTheFootprintPathsBits() {
   QFETCH(double, pHit);
   QFETCH(double, pMiss);
   const Dataset& d = workload();
-  MapperSettings settings;
-  settings.model = "himm";
-  settings.rule = rule.toStdString();
-  settings.pose = PoseSource::Truth;
-  settings.parameters = defaultParameters(settings.model, settings.rule);
-  settings.parameters.set("no_echo", noEchoFree ? 1.0 : 0.0);
+  MapperSettings settings = rowSettings("himm", rule.toStdString(), noEchoFree);
   settings.parameters.set("p_hit", pHit);
   settings.parameters.set("p_miss", pMiss);
   // The oracle, which also counts the footprints' cells and their echo cells (the one cell of a
