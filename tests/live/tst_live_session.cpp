@@ -182,11 +182,17 @@ class TstLiveSession : public QObject {
     QCOMPARE(static_cast<qint64>(got.scans.size()), rec.json["scans"].toInteger());
     QCOMPARE(static_cast<qint64>(got.readingCount()), rec.json["readings"].toInteger());
     QCOMPARE(rec.json["link"].toObject()["bad_checksums"].toInteger(), 0);
-    // About 7 s of SIPs at 10 Hz; the robot's log may hold the last one or two that were on
-    // their way when the recorder closed the session.
+    // About 7 s of SIPs at 10 Hz. The robot logs each SIP as it sends it, so its log also holds
+    // those still on their way when the recorder closed the session: one or two on an idle
+    // machine, one per 0.1 s that a loaded machine holds the recorder back from reading (over 10
+    // once, in a clean clone's `ctest -j2`). The recorder must not stop reading earlier than
+    // that: at most 3 s of SIPs it did not get.
     QVERIFY2(got.scans.size() >= 60, QByteArray::number(qulonglong(got.scans.size())));
     QVERIFY(sent.scans.size() >= got.scans.size());
-    QVERIFY(sent.scans.size() <= got.scans.size() + 10);
+    QVERIFY2(
+        sent.scans.size() <= got.scans.size() + 30,
+        qPrintable(
+            QString("sent %1 scans, recorded %2").arg(sent.scans.size()).arg(got.scans.size())));
     const double quantum = 0.485e-3;  // a Pioneer 3-DX position unit, metres
     for (std::size_t i = 0; i < got.scans.size(); ++i) {
       const sg::Scan& a = got.scans[i];
