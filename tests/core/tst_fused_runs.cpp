@@ -145,6 +145,7 @@ void TstFusedRuns::runsGiveTheFootprintPathsBits_data() {
   QTest::addColumn<QString>("rule");
   QTest::addColumn<bool>("noEchoFree");
   QTest::addColumn<bool>("normalise");
+  QTest::addColumn<double>("prior");
   const char* const models[] = {"hpf", "konolige", "murphy", "parameterized"};
   const char* const rules[] = {"addition", "bayes",   "bayes-recursive",
                                "log",      "logodds", "dempster-shafer"};
@@ -159,10 +160,14 @@ void TstFusedRuns::runsGiveTheFootprintPathsBits_data() {
           if (!normalise && std::string(r) != "addition") continue;
           QTest::addRow("%s/%s%s%s", m, r, noEcho ? " no_echo=1" : "",
                         normalise ? "" : " normalise=0")
-              << QString(m) << QString(r) << noEcho << normalise;
+              << QString(m) << QString(r) << noEcho << normalise << 0.5;
         }
       }
     }
+    // Log-odds' prior other than 0.5: its 1/prior odds is then not 1, so the order of the
+    // product o · p/(1 − p) · 1/prior_odds shows in the bits.
+    QTest::addRow("%s/logodds prior=0.3", m)
+        << QString(m) << QString("logodds") << false << true << 0.3;
   }
 }
 
@@ -171,9 +176,11 @@ void TstFusedRuns::runsGiveTheFootprintPathsBits() {
   QFETCH(QString, rule);
   QFETCH(bool, noEchoFree);
   QFETCH(bool, normalise);
+  QFETCH(double, prior);
   const Dataset& d = workload();
   MapperSettings settings = rowSettings(model.toStdString(), rule.toStdString(), noEchoFree);
   if (settings.rule == "addition") settings.parameters.set("normalise", normalise ? 1.0 : 0.0);
+  if (settings.rule == "logodds") settings.parameters.set("prior", prior);
 
   // The oracle: the footprint path, one reading at a time.
   Mapper oracle(d.ring, smallGrid(), settings);
@@ -225,6 +232,7 @@ void TstFusedRuns::himmAxisGivesTheFootprintPathsBits_data() {
   QTest::addColumn<bool>("noEchoFree");
   QTest::addColumn<double>("pHit");
   QTest::addColumn<double>("pMiss");
+  QTest::addColumn<double>("prior");
   // OctoMap's hit and miss (0.7, 0.4: the model's defaults), and the parameters' limits: certain
   // evidence (p 1 and 0), where Bayes meets 0/0 in a cell already certain the other way and keeps
   // it, and log-odds clamps to its floor; a miss of p 0.5 says nothing.
@@ -235,11 +243,13 @@ void TstFusedRuns::himmAxisGivesTheFootprintPathsBits_data() {
   for (const char* r : rules) {
     for (const bool noEcho : {false, true}) {
       QTest::addRow("himm/%s%s", r, noEcho ? " no_echo=1" : "")
-          << QString(r) << noEcho << 0.7 << 0.4;
+          << QString(r) << noEcho << 0.7 << 0.4 << 0.5;
     }
-    QTest::addRow("himm/%s certain", r) << QString(r) << true << 1.0 << 0.0;
-    QTest::addRow("himm/%s miss 0.5", r) << QString(r) << true << 0.9 << 0.5;
+    QTest::addRow("himm/%s certain", r) << QString(r) << true << 1.0 << 0.0 << 0.5;
+    QTest::addRow("himm/%s miss 0.5", r) << QString(r) << true << 0.9 << 0.5 << 0.5;
   }
+  // Log-odds' prior other than 0.5 (see runsGiveTheFootprintPathsBits_data).
+  QTest::addRow("himm/logodds prior=0.3") << QString("logodds") << false << 0.7 << 0.4 << 0.3;
 }
 
 void TstFusedRuns::himmAxisGivesTheFootprintPathsBits() {
@@ -247,10 +257,12 @@ void TstFusedRuns::himmAxisGivesTheFootprintPathsBits() {
   QFETCH(bool, noEchoFree);
   QFETCH(double, pHit);
   QFETCH(double, pMiss);
+  QFETCH(double, prior);
   const Dataset& d = workload();
   MapperSettings settings = rowSettings("himm", rule.toStdString(), noEchoFree);
   settings.parameters.set("p_hit", pHit);
   settings.parameters.set("p_miss", pMiss);
+  if (settings.rule == "logodds") settings.parameters.set("prior", prior);
   // The oracle, which also counts the footprints' cells and their echo cells (the one cell of a
   // footprint that carries p_hit, the last) in the grid.
   struct Counter final : FootprintObserver {
