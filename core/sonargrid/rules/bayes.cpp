@@ -48,11 +48,10 @@ void BayesRule::apply(const Footprint& fp, Grid& grid) const {
 
 bool BayesRule::applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
                              Grid& grid) const {
-  BayesCell* const g = grid.cells<BayesCell>();
   const double p = input_ == Input::Evidence
                        ? cellrule::bayesEvidence(evidence.empty, evidence.occupied)
                        : static_cast<double>(evidence.probability);
-  for (const std::uint32_t c : cells) cellrule::bayes(p, g[c]);
+  runs::bayesUniform(p, cells, grid.cells<BayesCell>());
   return true;
 }
 

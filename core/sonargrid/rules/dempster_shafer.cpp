@@ -34,9 +34,8 @@ void DempsterShaferRule::apply(const Footprint& fp, Grid& grid) const {
 
 bool DempsterShaferRule::applyUniform(const CellEvidence& evidence,
                                       std::span<const std::uint32_t> cells, Grid& grid) const {
-  DempsterShaferCell* const g = grid.cells<DempsterShaferCell>();
-  for (const std::uint32_t c : cells)
-    cellrule::dempsterShafer(evidence.occupied, evidence.empty, g[c]);
+  runs::dempsterShaferUniform(evidence.occupied, evidence.empty, cells,
+                              grid.cells<DempsterShaferCell>());
   return true;
 }
 

@@ -51,10 +51,8 @@ void LogOddsRule::apply(const Footprint& fp, Grid& grid) const {
 
 bool LogOddsRule::applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
                                Grid& grid) const {
-  LogOddsCell* const g = grid.cells<LogOddsCell>();
-  const double invPrior = 1.0 / priorOdds_;
-  for (const std::uint32_t c : cells)
-    cellrule::logOdds(evidence.probability, invPrior, minOdds_, maxOdds_, g[c]);
+  runs::logOddsUniform(evidence.probability, cells, grid.cells<LogOddsCell>(), 1.0 / priorOdds_,
+                       minOdds_, maxOdds_);
   return true;
 }
 

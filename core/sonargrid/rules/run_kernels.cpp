@@ -1,14 +1,18 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Compiled with -ffp-contract=off (core/CMakeLists.txt): the AVX2 clones must not fuse a multiply
 // and an add that the baseline build (x86-64 has no FMA) and the rules' apply() do apart.
-// Each kernel takes four consecutive cells at a time in double lanes, the model's floats widened as
-// apply() widens them, and repeats cell_updates.h's operations in its order; a lane's `if` is a
-// select of the updated and the old value. Dempster–Shafer's cells with both kinds of evidence
+// Each kernel takes four cells at a time in double lanes (four consecutive cells of a run, or four
+// listed cells gathered from the plane and scattered back), the model's floats widened as apply()
+// widens them, and repeats cell_updates.h's operations in its order; a lane's `if` is a select of
+// the updated and the old value. Dempster–Shafer's cells with both kinds of evidence
 // (which no cone model gives) go through cell_updates.h itself.
 #include "sonargrid/rules/run_kernels.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <span>
+#include <type_traits>
 
 #include "sonargrid/rules/cell_updates.h"
 
@@ -99,6 +103,27 @@ template <class Cell, class Group>
   }
 }
 
+// update(m) for every cell of `cells` (distinct grid indices into `plane`, one double a cell): W
+// cells at a time, gathered into lanes and scattered back; the last cells.size() mod W by
+// one(cell).
+template <class Cell, class Lanes, class One>
+[[gnu::always_inline]] inline void eachListed(std::span<const std::uint32_t> cells, Cell* plane,
+                                              Lanes&& update, One&& one) {
+  static_assert(sizeof(Cell) == sizeof(double));
+  const std::uint32_t* c = cells.data();
+  const std::uint32_t* const end = c + cells.size();
+  for (; end - c >= W; c += W) {
+    double v[W];
+    for (int j = 0; j < W; ++j) std::memcpy(&v[j], plane + c[j], sizeof(double));
+    const Doubles m = update(Doubles{v[0], v[1], v[2], v[3]});
+    for (int j = 0; j < W; ++j) {
+      const double x = m[j];
+      std::memcpy(plane + c[j], &x, sizeof(double));
+    }
+  }
+  for (; c != end; ++c) one(plane[*c]);
+}
+
 // Dempster–Shafer's general case, for a cell with both kinds of evidence (no cone model gives one):
 // a call, so that the kernel's lanes stay small enough to inline.
 [[gnu::noinline]] void generalDempsterShafer(float occupied, float empty,
@@ -151,6 +176,17 @@ SG_RUN_CLONES void bayes(const EvidenceRuns& runs, BayesCell* plane, bool likeli
         [&](const float* empty, const float* occupied, const float*, BayesCell* cells)
             SG_INLINE_LAMBDA { update(0.5 + 0.5 * (widen(occupied) - widen(empty)), cells); });
   }
+}
+
+SG_RUN_CLONES void bayesUniform(double p, std::span<const std::uint32_t> cells, BayesCell* plane) {
+  eachListed(
+      cells, plane,
+      [p](Doubles m) SG_INLINE_LAMBDA {
+        const Doubles num = p * m;
+        const Doubles den = num + (1.0 - p) * (1.0 - m);
+        return den > 0.0 ? num / den : m;
+      },
+      [p](BayesCell& cell) SG_INLINE_LAMBDA { cellrule::bayes(p, cell); });
 }
 
 SG_RUN_CLONES void logProduct(const EvidenceRuns& runs, LogCell* plane) {
@@ -209,6 +245,63 @@ SG_RUN_CLONES void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* 
                     if (general[j]) generalDempsterShafer(occupied[j], empty[j], cells[j]);
                   }
                 });
+}
+
+SG_RUN_CLONES void logOddsUniform(float probability, std::span<const std::uint32_t> cells,
+                                  LogOddsCell* plane, double invPrior, double minOdds,
+                                  double maxOdds) {
+  const double p = std::clamp(static_cast<double>(probability), cellrule::kProbabilityFloor,
+                              1.0 - cellrule::kProbabilityFloor);
+  const double ratio = p / (1.0 - p);
+  eachListed(
+      cells, plane,
+      [=](Doubles o) SG_INLINE_LAMBDA { return clamp(o * ratio * invPrior, minOdds, maxOdds); },
+      [=](LogOddsCell& cell)
+          SG_INLINE_LAMBDA { cellrule::logOdds(probability, invPrior, minOdds, maxOdds, cell); });
+}
+
+SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
+                                         std::span<const std::uint32_t> cells,
+                                         DempsterShaferCell* plane) {
+  const double o = std::clamp(static_cast<double>(occupied), 0.0, 1.0);
+  const double e = std::clamp(static_cast<double>(empty), 0.0, 1.0);
+  if (e != 0.0 && o != 0.0) {  // both kinds: cellrule's general case, one cell at a time
+    for (const std::uint32_t c : cells) generalDempsterShafer(occupied, empty, plane[c]);
+    return;
+  }
+  // One kind of evidence x, as cellrule's first case (occupied, e = 0) or second (empty, o = 0):
+  // `grow` is the mass x adds to, `shrink` the other; W cells at a time, gathered from the plane.
+  const std::uint32_t* c = cells.data();
+  const std::uint32_t* const end = c + cells.size();
+  auto lanes = [&](auto occupiedKind) SG_INLINE_LAMBDA {
+    constexpr bool kOccupied = decltype(occupiedKind)::value;
+    const double x = kOccupied ? o : e;
+    auto grow = [](DempsterShaferCell& m) -> double& { return kOccupied ? m.occ : m.emp; };
+    auto shrink = [](DempsterShaferCell& m) -> double& { return kOccupied ? m.emp : m.occ; };
+    for (; end - c >= W; c += W) {
+      DempsterShaferCell* const m[W] = {plane + c[0], plane + c[1], plane + c[2], plane + c[3]};
+      const Doubles mo = {m[0]->occ, m[1]->occ, m[2]->occ, m[3]->occ};
+      const Doubles me = {m[0]->emp, m[1]->emp, m[2]->emp, m[3]->emp};
+      const Doubles g = kOccupied ? mo : me;
+      const Doubles s = kOccupied ? me : mo;
+      const Doubles denominator = 1.0 - s * x;
+      const Doubles inv = 1.0 / denominator;
+      const Doubles mu = 1.0 - mo - me;
+      const auto keep = denominator <= 0.0;  // total conflict keeps the masses
+      const Doubles grown = keep ? g : (g + mu * x) * inv;
+      const Doubles shrunk = keep ? s : s * (1.0 - x) * inv;
+      // Written out: a loop over j went through the stack.
+      grow(*m[0]) = grown[0], shrink(*m[0]) = shrunk[0];
+      grow(*m[1]) = grown[1], shrink(*m[1]) = shrunk[1];
+      grow(*m[2]) = grown[2], shrink(*m[2]) = shrunk[2];
+      grow(*m[3]) = grown[3], shrink(*m[3]) = shrunk[3];
+    }
+  };
+  if (e == 0.0)
+    lanes(std::true_type{});
+  else
+    lanes(std::false_type{});
+  for (; c != end; ++c) cellrule::dempsterShafer(occupied, empty, plane[*c]);
 }
 
 }  // namespace sg::runs

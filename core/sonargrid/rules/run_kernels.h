@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
 // The rules' updates of a reading's runs of consecutive cells (UpdateRule::applyRuns,
-// footprint.h), several cells at a time in double lanes: each cell gets the very operations, in the
+// footprint.h) and of a list of cells that take one value (UpdateRule::applyUniform), several
+// cells at a time in double lanes: each cell gets the very operations, in the
 // same order, that the rule's apply() gives it one CellEvidence at a time, so both paths give the
 // same bits. Built for the baseline and, chosen when the program starts, for AVX2
 // (run_kernels.cpp).
+
+#include <cstdint>
+#include <span>
 
 #include "sonargrid/footprint.h"
 #include "sonargrid/rules/rule_classes.h"
@@ -25,5 +29,15 @@ void logOdds(const EvidenceRuns& runs, LogOddsCell* cells, double invPrior, doub
              double maxOdds);
 // DempsterShaferRule::apply.
 void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* cells);
+// The rules' applyUniform: one reading's value applied to each of `cells` (grid indices, distinct)
+// of the grid's plane, several cells at a time, with the bits apply() gives each.
+// BayesRule's, `p` being the probability apply() computes for the evidence.
+void bayesUniform(double p, std::span<const std::uint32_t> cells, BayesCell* plane);
+// LogOddsRule's, with its configured 1/prior odds and clamp.
+void logOddsUniform(float probability, std::span<const std::uint32_t> cells, LogOddsCell* plane,
+                    double invPrior, double minOdds, double maxOdds);
+// DempsterShaferRule's.
+void dempsterShaferUniform(float occupied, float empty, std::span<const std::uint32_t> cells,
+                           DempsterShaferCell* plane);
 
 }  // namespace sg::runs
