@@ -6,6 +6,9 @@
 // same bits. The same for HIMM's axis with every rule, whose batch path lists each reading's axis
 // cells and folds them into the grid with one UpdateRule::applyUniform call per value (the HIMM
 // rule: a table look-up per cell; SensorModel::listDirect, applyDirect), on 1, 2 and 3 threads.
+// And applyUniform on its own against apply(), for evidence and cell values HIMM's axis never
+// gives (both kinds of evidence, out of range, NaN) and lists of every length around the lanes'
+// four.
 //
 // Where the expectations come from: the grid of the footprint path itself. A mapper with a
 // FootprintObserver maps through footprint() and UpdateRule::apply() one reading at a time (the
@@ -16,6 +19,7 @@
 #include <QtTest>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numbers>
 
 #include "sonargrid/concurrency.h"
@@ -138,6 +142,8 @@ class TstFusedRuns : public QObject {
   void runsGiveTheFootprintPathsBits();
   void himmAxisGivesTheFootprintPathsBits_data();
   void himmAxisGivesTheFootprintPathsBits();
+  void uniformGivesApplysBits_data();
+  void uniformGivesApplysBits();
 };
 
 void TstFusedRuns::runsGiveTheFootprintPathsBits_data() {
@@ -292,6 +298,88 @@ void TstFusedRuns::himmAxisGivesTheFootprintPathsBits() {
     QVERIFY2(
         sameGrid(settings.rule, oracle.storage(), direct.storage()),
         qPrintable(QString("%1 threads: the grid differs from the footprint path's").arg(threads)));
+  }
+}
+
+void TstFusedRuns::uniformGivesApplysBits_data() {
+  QTest::addColumn<QString>("rule");
+  QTest::addColumn<float>("empty");
+  QTest::addColumn<float>("occupied");
+  QTest::addColumn<float>("probability");
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  // (pE, pO, P) as a model gives them (paper 001 §3.2: P = 0.5 + (pO − pE)/2), certain evidence,
+  // both kinds at once (Dempster–Shafer's general case, which no model gives), and values outside
+  // [0, 1] or NaN, which the rules clamp or pass on.
+  const struct {
+    const char* name;
+    float empty, occupied, probability;
+  } evidence[] = {{"nothing", 0.0f, 0.0f, 0.5f},          {"empty 0.6", 0.6f, 0.0f, 0.2f},
+                  {"occupied 0.8", 0.0f, 0.8f, 0.9f},     {"both", 0.3f, 0.4f, 0.55f},
+                  {"certain occupied", 0.0f, 1.0f, 1.0f}, {"certain empty", 1.0f, 0.0f, 0.0f},
+                  {"out of range", -0.2f, 1.3f, 1.2f},    {"nan", nan, 0.0f, nan}};
+  for (const char* r : {"bayes", "bayes-recursive", "log", "logodds", "dempster-shafer"}) {
+    for (const auto& e : evidence) {
+      QTest::addRow("%s %s", r, e.name) << QString(r) << e.empty << e.occupied << e.probability;
+    }
+  }
+}
+
+void TstFusedRuns::uniformGivesApplysBits() {
+  QFETCH(QString, rule);
+  QFETCH(float, empty);
+  QFETCH(float, occupied);
+  QFETCH(float, probability);
+  std::unique_ptr<UpdateRule> r = makeUpdateRule(rule.toStdString());
+  ParameterSet parameters(r->info().parameters);
+  if (rule == "logodds") parameters.set("prior", 0.3);  // 1/prior_odds not 1
+  r->configure(parameters);
+  constexpr std::uint32_t kCells = 24;
+  GridSpec spec;
+  spec.width = static_cast<int>(kCells);
+  spec.height = 1;
+  // Cells that hold every kind of value: certain occupied, certain empty, some evidence of either
+  // kind, unknown.
+  auto prepared = [&] {
+    Grid g(spec, r->layout());
+    for (std::uint32_t i = 0; i < kCells; ++i) {
+      const float x = 0.2f + 0.025f * static_cast<float>(i);
+      Footprint f;
+      switch (i % 5) {
+        case 0:
+          f.cells = {CellEvidence(i, 0.0, 1.0, 1.0)};
+          break;
+        case 1:
+          f.cells = {CellEvidence(i, 1.0, 0.0, 0.0)};
+          break;
+        case 2:
+          f.cells = {CellEvidence(i, x, 0.0, 0.5 - x / 2)};
+          break;
+        case 3:
+          f.cells = {CellEvidence(i, 0.0, x, 0.5 + x / 2)};
+          break;
+        default:
+          break;
+      }
+      r->apply(f, g);
+    }
+    return g;
+  };
+  const CellEvidence value(0, empty, occupied, probability);
+  for (const std::size_t n : {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 23}) {
+    // n distinct cells out of order: 7 is prime to 24.
+    std::vector<std::uint32_t> cells(n);
+    Footprint f;
+    for (std::size_t k = 0; k < n; ++k) {
+      cells[k] = static_cast<std::uint32_t>((7 * k + 3) % kCells);
+      CellEvidence c = value;
+      c.cell = cells[k];
+      f.cells.push_back(c);
+    }
+    Grid oracle = prepared(), uniform = prepared();
+    r->apply(f, oracle);
+    QVERIFY(r->applyUniform(value, cells, uniform));
+    QVERIFY2(sameGrid(rule.toStdString(), oracle, uniform),
+             qPrintable(QString("%1 cells: the grid differs from apply()'s").arg(n)));
   }
 }
 

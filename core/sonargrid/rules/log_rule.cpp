@@ -43,7 +43,7 @@ void LogRule::apply(const Footprint& fp, Grid& grid) const {
 
 bool LogRule::applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
                            Grid& grid) const {
-  // One multiply and two compares a cell: in lanes (run_kernels.h) the gather and scatter cost
+  // A multiply and three compares a cell: in lanes (run_kernels.h) the gather and scatter cost
   // more than they save.
   LogCell* const g = grid.cells<LogCell>();
   for (const std::uint32_t c : cells) cellrule::logProduct(evidence.empty, evidence.occupied, g[c]);

@@ -5,7 +5,7 @@
 // listed cells gathered from the plane and scattered back), the model's floats widened as apply()
 // widens them, and repeats cell_updates.h's operations in its order; a lane's `if` is a select of
 // the updated and the old value. Dempster–Shafer's cells with both kinds of evidence
-// (which no cone model gives) go through cell_updates.h itself.
+// (which no model gives) go through cell_updates.h itself, one at a time.
 #include "sonargrid/rules/run_kernels.h"
 
 #include <algorithm>
@@ -44,7 +44,7 @@
 namespace sg::runs {
 namespace {
 
-constexpr int W = 4;
+constexpr int W = 4;  // written out as four in the gathers and scatters below
 using Doubles = double __attribute__((vector_size(8 * W)));
 using Floats = float __attribute__((vector_size(4 * W)));
 
@@ -64,7 +64,8 @@ using Floats = float __attribute__((vector_size(4 * W)));
 [[gnu::always_inline]] inline Doubles splat(double x) {
   return Doubles{x, x, x, x};
 }
-// std::clamp(v, lo, hi) per lane: v < lo ? lo : hi < v ? hi : v.
+// std::clamp(v, lo, hi) per lane: v < lo ? lo : hi < v ? hi : v, which is what std::clamp gives
+// for any v (NaN and ±0 included) when lo <= hi.
 [[gnu::always_inline]] inline Doubles clamp(Doubles v, double lo, double hi) {
   return v < lo ? splat(lo) : (hi < v ? splat(hi) : v);
 }
@@ -109,7 +110,7 @@ template <class Cell, class Group>
 template <class Cell, class Lanes, class One>
 [[gnu::always_inline]] inline void eachListed(std::span<const std::uint32_t> cells, Cell* plane,
                                               Lanes&& update, One&& one) {
-  static_assert(sizeof(Cell) == sizeof(double));
+  static_assert(sizeof(Cell) == sizeof(double) && W == 4);
   const std::uint32_t* c = cells.data();
   const std::uint32_t* const end = c + cells.size();
   for (; end - c >= W; c += W) {
@@ -271,6 +272,7 @@ SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
   }
   // One kind of evidence x, as cellrule's first case (occupied, e = 0) or second (empty, o = 0):
   // `grow` is the mass x adds to, `shrink` the other; W cells at a time, gathered from the plane.
+  static_assert(W == 4);
   const std::uint32_t* c = cells.data();
   const std::uint32_t* const end = c + cells.size();
   auto lanes = [&](auto occupiedKind) SG_INLINE_LAMBDA {

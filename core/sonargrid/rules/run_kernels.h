@@ -30,7 +30,8 @@ void logOdds(const EvidenceRuns& runs, LogOddsCell* cells, double invPrior, doub
 // DempsterShaferRule::apply.
 void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* cells);
 // The rules' applyUniform: one reading's value applied to each of `cells` (grid indices, distinct)
-// of the grid's plane, several cells at a time, with the bits apply() gives each.
+// of the grid's plane, several cells at a time, with the bits apply() gives each. (The log rule's
+// stays a scalar loop, log_rule.cpp.)
 // BayesRule's, `p` being the probability apply() computes for the evidence.
 void bayesUniform(double p, std::span<const std::uint32_t> cells, BayesCell* plane);
 // LogOddsRule's, with its configured 1/prior odds and clamp.
