@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "sonargrid/models/cone_raster.h"
@@ -133,9 +134,15 @@ struct LaneTypes<lanes::kWideWidth> {
 // nothing. `out`'s arrays have room for W − 1 values past the row, and `kept` for a mask per cell
 // and W − 1 more.
 template <class Shape, int W>
-[[gnu::always_inline]] inline void coneRowRuns(const Shape& shape, const ConeRow& row,
+[[gnu::always_inline]] inline void coneRowRuns(const Shape& model, const ConeRow& row,
                                                EvidenceRuns& out, std::size_t& next,
                                                std::int32_t* kept) {
+  // The shape's and the row's values as locals: the loop's float and int stores could otherwise
+  // alias them, and the compiler loaded and broadcast every one of them again per group of lanes.
+  static_assert(std::is_trivially_copyable_v<Shape>);
+  const Shape shape = model;
+  const int count = row.count;
+  const BeamTables::Entry* const entries = row.entries;
   // As in coneRow(), operation for operation.
   const float hHi = static_cast<float>(row.heading);
   const float hLo = static_cast<float>(row.heading - static_cast<double>(hHi));
@@ -148,8 +155,8 @@ template <class Shape, int W>
   I lane;
   for (int j = 0; j < W; ++j) lane[j] = j;
   I every = I{} - 1;  // every lane set
-  for (int k = 0; k < row.count; k += W) {
-    const BeamTables::Entry* e = row.entries + k;
+  for (int k = 0; k < count; k += W) {
+    const BeamTables::Entry* e = entries + k;
     F lo, hi;
     std::memcpy(&lo, &e[0].distance, sizeof lo);
     std::memcpy(&hi, &e[W / 2].distance, sizeof hi);
@@ -166,7 +173,7 @@ template <class Shape, int W>
     std::memcpy(occupied + k, &v.pO, sizeof v.pO);
     std::memcpy(probability + k, &v.p, sizeof v.p);
     // Which lanes the reading writes (lanes past the row's end count as written: cut off).
-    const I keep = v.occupied | v.empty | (lane >= row.count - k);
+    const I keep = v.occupied | v.empty | (lane >= count - k);
     std::memcpy(kept + k, &keep, sizeof keep);
     every &= keep;
   }
