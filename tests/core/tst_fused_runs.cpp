@@ -6,9 +6,9 @@
 // same bits. The same for HIMM's axis with every rule, whose batch path lists each reading's axis
 // cells and folds them into the grid with one UpdateRule::applyUniform call per value (the HIMM
 // rule: a table look-up per cell; SensorModel::listDirect, applyDirect), on 1, 2 and 3 threads.
-// And applyUniform on its own against apply(), for evidence and cell values HIMM's axis never
-// gives (both kinds of evidence, out of range, NaN) and lists of every length around the lanes'
-// four.
+// And applyUniform and applyRuns on their own against apply(), for evidence and cell values the
+// models never give (both kinds of evidence at once, out of range, NaN) and lists and runs of every
+// length around the lanes' four.
 //
 // Where the expectations come from: the grid of the footprint path itself. A mapper with a
 // FootprintObserver maps through footprint() and UpdateRule::apply() one reading at a time (the
@@ -144,6 +144,8 @@ class TstFusedRuns : public QObject {
   void himmAxisGivesTheFootprintPathsBits();
   void uniformGivesApplysBits_data();
   void uniformGivesApplysBits();
+  void runsGiveApplysBits_data();
+  void runsGiveApplysBits();
 };
 
 void TstFusedRuns::runsGiveTheFootprintPathsBits_data() {
@@ -301,6 +303,52 @@ void TstFusedRuns::himmAxisGivesTheFootprintPathsBits() {
   }
 }
 
+namespace {
+
+// A one-row grid of `cells` cells of `rule` that hold every kind of value: certain occupied,
+// certain empty, some evidence of either kind, unknown.
+Grid preparedGrid(const UpdateRule& rule, std::uint32_t cells) {
+  GridSpec spec;
+  spec.width = static_cast<int>(cells);
+  spec.height = 1;
+  Grid g(spec, rule.layout());
+  for (std::uint32_t i = 0; i < cells; ++i) {
+    const float x = 0.2f + 0.025f * static_cast<float>(i % 24);
+    Footprint f;
+    switch (i % 5) {
+      case 0:
+        f.cells = {CellEvidence(i, 0.0, 1.0, 1.0)};
+        break;
+      case 1:
+        f.cells = {CellEvidence(i, 1.0, 0.0, 0.0)};
+        break;
+      case 2:
+        f.cells = {CellEvidence(i, x, 0.0, 0.5 - x / 2)};
+        break;
+      case 3:
+        f.cells = {CellEvidence(i, 0.0, x, 0.5 + x / 2)};
+        break;
+      default:
+        break;
+    }
+    rule.apply(f, g);
+  }
+  return g;
+}
+
+// A rule configured with its defaults, log-odds with a prior of 0.3 (1/prior_odds not 1) and
+// addition without normalising (so that it has no totals).
+std::unique_ptr<UpdateRule> configuredRule(const QString& name) {
+  std::unique_ptr<UpdateRule> r = makeUpdateRule(name.toStdString());
+  ParameterSet parameters(r->info().parameters);
+  if (name == "logodds") parameters.set("prior", 0.3);
+  if (name == "addition") parameters.set("normalise", 0.0);
+  r->configure(parameters);
+  return r;
+}
+
+}  // namespace
+
 void TstFusedRuns::uniformGivesApplysBits_data() {
   QTest::addColumn<QString>("rule");
   QTest::addColumn<float>("empty");
@@ -329,41 +377,9 @@ void TstFusedRuns::uniformGivesApplysBits() {
   QFETCH(float, empty);
   QFETCH(float, occupied);
   QFETCH(float, probability);
-  std::unique_ptr<UpdateRule> r = makeUpdateRule(rule.toStdString());
-  ParameterSet parameters(r->info().parameters);
-  if (rule == "logodds") parameters.set("prior", 0.3);  // 1/prior_odds not 1
-  r->configure(parameters);
+  const std::unique_ptr<UpdateRule> r = configuredRule(rule);
   constexpr std::uint32_t kCells = 24;
-  GridSpec spec;
-  spec.width = static_cast<int>(kCells);
-  spec.height = 1;
-  // Cells that hold every kind of value: certain occupied, certain empty, some evidence of either
-  // kind, unknown.
-  auto prepared = [&] {
-    Grid g(spec, r->layout());
-    for (std::uint32_t i = 0; i < kCells; ++i) {
-      const float x = 0.2f + 0.025f * static_cast<float>(i);
-      Footprint f;
-      switch (i % 5) {
-        case 0:
-          f.cells = {CellEvidence(i, 0.0, 1.0, 1.0)};
-          break;
-        case 1:
-          f.cells = {CellEvidence(i, 1.0, 0.0, 0.0)};
-          break;
-        case 2:
-          f.cells = {CellEvidence(i, x, 0.0, 0.5 - x / 2)};
-          break;
-        case 3:
-          f.cells = {CellEvidence(i, 0.0, x, 0.5 + x / 2)};
-          break;
-        default:
-          break;
-      }
-      r->apply(f, g);
-    }
-    return g;
-  };
+  auto prepared = [&] { return preparedGrid(*r, kCells); };
   const CellEvidence value(0, empty, occupied, probability);
   for (const std::size_t n : {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 23}) {
     // n distinct cells out of order: 7 is prime to 24.
@@ -380,6 +396,67 @@ void TstFusedRuns::uniformGivesApplysBits() {
     QVERIFY(r->applyUniform(value, cells, uniform));
     QVERIFY2(sameGrid(rule.toStdString(), oracle, uniform),
              qPrintable(QString("%1 cells: the grid differs from apply()'s").arg(n)));
+  }
+}
+
+void TstFusedRuns::runsGiveApplysBits_data() {
+  QTest::addColumn<QString>("rule");
+  for (const char* r :
+       {"addition", "bayes", "bayes-recursive", "log", "logodds", "dempster-shafer"}) {
+    QTest::addRow("%s", r) << QString(r);
+  }
+}
+
+void TstFusedRuns::runsGiveApplysBits() {
+  // One reading's runs of every length around the kernels' four lanes, each cell with its own
+  // evidence: of one kind as the cone models give it, of both kinds at once (Dempster–Shafer's
+  // general case, which no model gives), none, certain, out of [0, 1] and NaN; against apply() of
+  // the same cells in the same order.
+  QFETCH(QString, rule);
+  const std::unique_ptr<UpdateRule> r = configuredRule(rule);
+  QVERIFY(!r->needsTotals());
+  constexpr std::uint32_t kCells = 96;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const CellEvidence kinds[] = {CellEvidence(0, 0.6, 0.0, 0.2),  CellEvidence(0, 0.0, 0.8, 0.9),
+                                CellEvidence(0, 0.3, 0.4, 0.55), CellEvidence(0, 0.0, 0.0, 0.5),
+                                CellEvidence(0, 0.0, 1.0, 1.0),  CellEvidence(0, 1.0, 0.0, 0.0),
+                                CellEvidence(0, 0.1, 0.0, 0.45), CellEvidence(0, -0.2, 1.3, 1.2),
+                                CellEvidence(0, 0.0, 0.25, 0.6), CellEvidence(0, 0.5, 0.5, 0.5),
+                                CellEvidence(0, nan, 0.0, nan)};
+  constexpr std::size_t kKinds = sizeof kinds / sizeof kinds[0];
+  // Five times, the cells one further along each time: every value then meets each of the five
+  // kinds of cell preparedGrid() makes (certain evidence against a certain cell among them).
+  for (std::uint32_t shift = 0; shift < 5; ++shift) {
+    EvidenceRuns runs;
+    Footprint footprint;
+    std::uint32_t cell = 1 + shift;
+    std::size_t v = 0;
+    for (const int count : {1, 2, 3, 4, 5, 6, 7, 8, 9, 19}) {
+      runs.runs.push_back(EvidenceRuns::Run{cell, count, static_cast<std::uint32_t>(v)});
+      for (int k = 0; k < count; ++k, ++v) {
+        CellEvidence c = kinds[(v * 7) % kKinds];  // 7 is prime to the 11 kinds
+        c.cell = cell + static_cast<std::uint32_t>(k);
+        runs.empty.push_back(c.empty);
+        runs.occupied.push_back(c.occupied);
+        runs.probability.push_back(c.probability);
+        footprint.cells.push_back(c);
+      }
+      cell += static_cast<std::uint32_t>(count) + 1;  // a cell left out between runs
+    }
+    QVERIFY(cell <= kCells);
+    // The kernels' last lanes may read up to seven values past a run (cone_model.h pads for them).
+    for (int k = 0; k < 7; ++k) {
+      runs.empty.push_back(0.0f);
+      runs.occupied.push_back(0.0f);
+      runs.probability.push_back(0.5f);
+    }
+    Grid oracle = preparedGrid(*r, kCells), viaRuns = preparedGrid(*r, kCells);
+    r->apply(footprint, oracle);
+    Footprint deferred;
+    r->applyRuns(runs, viaRuns, &deferred);
+    QVERIFY(deferred.cells.empty());
+    QVERIFY2(sameGrid(rule.toStdString(), oracle, viaRuns),
+             qPrintable(QString("shift %1: the grid differs from apply()'s").arg(shift)));
   }
 }
 
