@@ -64,6 +64,14 @@ using Floats = float __attribute__((vector_size(4 * W)));
 [[gnu::always_inline]] inline Doubles splat(double x) {
   return Doubles{x, x, x, x};
 }
+// Whether any lane of a comparison's result is set: one test where looking at each lane was four.
+using Mask = decltype(Doubles{} == Doubles{});
+[[gnu::always_inline]] inline bool anyLane(Mask m) {
+  std::uint64_t lane[W];
+  std::memcpy(lane, &m, sizeof lane);
+  static_assert(sizeof lane == sizeof m && W == 4);
+  return (lane[0] | lane[1] | lane[2] | lane[3]) != 0;
+}
 // std::clamp(v, lo, hi) per lane: v < lo ? lo : hi < v ? hi : v, which is what std::clamp gives
 // for any v (NaN and ±0 included) when lo <= hi.
 [[gnu::always_inline]] inline Doubles clamp(Doubles v, double lo, double hi) {
@@ -242,8 +250,10 @@ SG_RUN_CLONES void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* 
                   const Doubles newEmp = keep ? me : (onlyOccupied ? shrunk : grown);
                   store(cells, __builtin_shufflevector(newOcc, newEmp, 0, 4, 1, 5));
                   store(cells + 2, __builtin_shufflevector(newOcc, newEmp, 2, 6, 3, 7));
-                  for (int j = 0; j < W; ++j) {
-                    if (general[j]) generalDempsterShafer(occupied[j], empty[j], cells[j]);
+                  if (anyLane(general)) {
+                    for (int j = 0; j < W; ++j) {
+                      if (general[j]) generalDempsterShafer(occupied[j], empty[j], cells[j]);
+                    }
                   }
                 });
 }
