@@ -179,14 +179,14 @@ template <class Shape, int W>
   }
   const bool all = lanes::all(every);
   const auto first = static_cast<std::uint32_t>(next);
-  next += static_cast<std::size_t>(row.count);
+  next += static_cast<std::size_t>(count);
   if (all) {
-    out.runs.push_back(EvidenceRuns::Run{row.cell, row.count, first});
+    out.runs.push_back(EvidenceRuns::Run{row.cell, count, first});
     return;
   }
   // A cell the reading says nothing about (rare, at the edge of a region) splits the row.
   int begin = -1;  // of the run being extended
-  for (int k = 0; k < row.count; ++k) {
+  for (int k = 0; k < count; ++k) {
     const bool keep = kept[k] != 0;
     if (keep && begin < 0) begin = k;
     if (!keep && begin >= 0) {
@@ -197,8 +197,7 @@ template <class Shape, int W>
   }
   if (begin >= 0) {
     out.runs.push_back(EvidenceRuns::Run{row.cell + static_cast<std::uint32_t>(begin),
-                                         row.count - begin,
-                                         first + static_cast<std::uint32_t>(begin)});
+                                         count - begin, first + static_cast<std::uint32_t>(begin)});
   }
 }
 

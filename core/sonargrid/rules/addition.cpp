@@ -57,7 +57,8 @@ void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* de
   // The occupied cells wait for the reading's total (applyPart). A cell of no occupied evidence
   // adds nothing to it (0 or −0 in fixed point is 0), so only the others are kept: the arc.
   // Most of a cone is not on the arc: eight values at a time are first tested for any that is not
-  // zero (the vector != keeps NaN and drops −0, as the scalar one does).
+  // zero (the vector != keeps NaN and denormals and drops −0, as the scalar one does; nothing in
+  // the program sets the CPU to treat denormals as zero).
   using Floats = float __attribute__((vector_size(16)));
   using Ints = std::int32_t __attribute__((vector_size(16)));
   for (const EvidenceRuns::Run& run : runs.runs) {
