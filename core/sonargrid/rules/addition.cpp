@@ -1,7 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <cstdint>
-#include <cstring>
-
+#include "sonargrid/models/lanes.h"
 #include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
 #include "sonargrid/rules/run_kernels.h"
@@ -56,11 +54,9 @@ void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* de
   }
   // The occupied cells wait for the reading's total (applyPart). A cell of no occupied evidence
   // adds nothing to it (0 or −0 in fixed point is 0), so only the others are kept: the arc.
-  // Most of a cone is not on the arc: eight values at a time are first tested for any that is not
-  // zero (the vector != keeps NaN and denormals and drops −0, as the scalar one does; nothing in
-  // the program sets the CPU to treat denormals as zero).
-  using Floats = float __attribute__((vector_size(16)));
-  using Ints = std::int32_t __attribute__((vector_size(16)));
+  // Most of a cone is not on the arc: eight values at a time are first tested for being all zero
+  // (the vector == holds for ±0 and not for NaN or denormals, as the scalar != says the opposite;
+  // nothing in the program sets the CPU to treat denormals as zero).
   for (const EvidenceRuns::Run& run : runs.runs) {
     const float* const occupied = runs.occupied.data() + run.first;
     auto keep = [&](int k) {
@@ -72,13 +68,8 @@ void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* de
     };
     int k = 0;
     for (; k + 8 <= run.count; k += 8) {
-      Floats lo, hi;
-      std::memcpy(&lo, occupied + k, sizeof lo);
-      std::memcpy(&hi, occupied + k + 4, sizeof hi);
-      const Ints any = (lo != Floats{}) | (hi != Floats{});
-      std::uint64_t halves[2];
-      std::memcpy(halves, &any, sizeof halves);
-      if ((halves[0] | halves[1]) == 0) continue;
+      const lanes::Floats lo = lanes::load(occupied + k), hi = lanes::load(occupied + k + 4);
+      if (lanes::all((lo == lanes::Floats{}) & (hi == lanes::Floats{}))) continue;
       for (int j = k; j < k + 8; ++j) keep(j);
     }
     for (; k < run.count; ++k) keep(k);

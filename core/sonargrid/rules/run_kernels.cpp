@@ -133,6 +133,18 @@ template <class Cell, class Lanes, class One>
   for (; c != end; ++c) one(plane[*c]);
 }
 
+// Dempster's rule for one kind of evidence x per lane (cellrule::dempsterShafer's first two
+// cases): `grow` is the mass x adds to, `shrink` the other, `mu` the unknown mass. The masses
+// before the rule's total-conflict test, which the caller applies (denominator <= 0 keeps them).
+struct OneKind {
+  Doubles grown, shrunk, denominator;
+};
+[[gnu::always_inline]] inline OneKind oneKind(Doubles grow, Doubles shrink, Doubles mu, Doubles x) {
+  const Doubles denominator = 1.0 - shrink * x;
+  const Doubles inv = 1.0 / denominator;
+  return {(grow + mu * x) * inv, shrink * (1.0 - x) * inv, denominator};
+}
+
 // Dempster–Shafer's general case, for a cell with both kinds of evidence (no cone model gives one):
 // a call, so that the kernel's lanes stay small enough to inline.
 [[gnu::noinline]] void generalDempsterShafer(float occupied, float empty,
@@ -237,17 +249,13 @@ SG_RUN_CLONES void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* 
                   const Doubles x = onlyOccupied ? o : e;
                   const Doubles grow = onlyOccupied ? mo : me;
                   const Doubles shrink = onlyOccupied ? me : mo;
-                  const Doubles denominator = 1.0 - shrink * x;
-                  const Doubles inv = 1.0 / denominator;
-                  const Doubles mu = 1.0 - mo - me;
-                  const Doubles grown = (grow + mu * x) * inv;
-                  const Doubles shrunk = shrink * (1.0 - x) * inv;
+                  const OneKind r = oneKind(grow, shrink, 1.0 - mo - me, x);
                   // Total conflict (denominator <= 0) keeps the masses, as does a lane of both
                   // kinds, done below by cellrule.
                   const auto general = ~(onlyOccupied | onlyEmpty);
-                  const auto keep = (denominator <= 0.0) | general;
-                  const Doubles newOcc = keep ? mo : (onlyOccupied ? grown : shrunk);
-                  const Doubles newEmp = keep ? me : (onlyOccupied ? shrunk : grown);
+                  const auto keep = (r.denominator <= 0.0) | general;
+                  const Doubles newOcc = keep ? mo : (onlyOccupied ? r.grown : r.shrunk);
+                  const Doubles newEmp = keep ? me : (onlyOccupied ? r.shrunk : r.grown);
                   store(cells, __builtin_shufflevector(newOcc, newEmp, 0, 4, 1, 5));
                   store(cells + 2, __builtin_shufflevector(newOcc, newEmp, 2, 6, 3, 7));
                   if (anyLane(general)) {
@@ -287,7 +295,7 @@ SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
   const std::uint32_t* const end = c + cells.size();
   auto lanes = [&](auto occupiedKind) SG_INLINE_LAMBDA {
     constexpr bool kOccupied = decltype(occupiedKind)::value;
-    const double x = kOccupied ? o : e;
+    const Doubles x = splat(kOccupied ? o : e);
     auto grow = [](DempsterShaferCell& m) -> double& { return kOccupied ? m.occ : m.emp; };
     auto shrink = [](DempsterShaferCell& m) -> double& { return kOccupied ? m.emp : m.occ; };
     for (; end - c >= W; c += W) {
@@ -296,12 +304,10 @@ SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
       const Doubles me = {m[0]->emp, m[1]->emp, m[2]->emp, m[3]->emp};
       const Doubles g = kOccupied ? mo : me;
       const Doubles s = kOccupied ? me : mo;
-      const Doubles denominator = 1.0 - s * x;
-      const Doubles inv = 1.0 / denominator;
-      const Doubles mu = 1.0 - mo - me;
-      const auto keep = denominator <= 0.0;  // total conflict keeps the masses
-      const Doubles grown = keep ? g : (g + mu * x) * inv;
-      const Doubles shrunk = keep ? s : s * (1.0 - x) * inv;
+      const OneKind r = oneKind(g, s, 1.0 - mo - me, x);
+      const auto keep = r.denominator <= 0.0;  // total conflict keeps the masses
+      const Doubles grown = keep ? g : r.grown;
+      const Doubles shrunk = keep ? s : r.shrunk;
       // Written out: a loop over j went through the stack.
       grow(*m[0]) = grown[0], shrink(*m[0]) = shrunk[0];
       grow(*m[1]) = grown[1], shrink(*m[1]) = shrunk[1];
