@@ -131,7 +131,7 @@ void TstCliBench::bytesPerCell_data() {
   // The rule's planes (rule_classes.h), 1 byte of observed/written mark (grid.h) and the snapshot
   // a view reads (occupancy_map.h): probability, native and evidence as doubles, level, filled and
   // observed as bytes, 8 + 8 + 8 + 1 + 1 + 1 = 27.
-  QTest::newRow("addition") << "addition" << 8 + 8 + 1 + 27;  // Emp and Occ, doubles
+  QTest::newRow("addition") << "addition" << 4 + 4 + 1 + 27;  // Emp and Occ, floats
   QTest::newRow("bayes") << "bayes" << 8 + 1 + 27;            // p, a double
   QTest::newRow("bayes-recursive") << "bayes-recursive" << 8 + 1 + 27;
   QTest::newRow("log") << "log" << 8 + 1 + 27;                           // Emp · Occ

@@ -295,9 +295,9 @@ void TstMetrics::ruleEvidence() {
   // Each rule's certainty of occupancy (docs/metrics.md, "IOP weights"), from its cell values.
   sg::AdditionRule addition;
   addition.configure(sg::defaultParameters("hpf", "addition"));
-  // Addition: Occ itself (paper 000 eq 7), whatever Emp is.
-  QCOMPARE(addition.evidenceOf(sg::EmptyEvidence{0.1}, sg::OccupiedEvidence{0.6}), 0.6);
-  QCOMPARE(addition.evidenceOf(sg::EmptyEvidence{0.0}, sg::OccupiedEvidence{0.2}), 0.2);
+  // Addition: Occ itself (paper 000 eq 7), whatever Emp is; the cell keeps it as a float.
+  QCOMPARE(addition.evidenceOf(sg::EmptyEvidence{0.1f}, sg::OccupiedEvidence{0.6f}), double(0.6f));
+  QCOMPARE(addition.evidenceOf(sg::EmptyEvidence{0.0f}, sg::OccupiedEvidence{0.2f}), double(0.2f));
   sg::BayesRule bayes(sg::BayesRule::Input::Evidence);
   // Probabilistic: 2p − 1 above 0.5, 0 below: p 0.8 → 0.6; p 0.3 → 0.
   QVERIFY(std::abs(bayes.evidenceOf(sg::BayesCell{0.8}) - 0.6) < 1e-15);

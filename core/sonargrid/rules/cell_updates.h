@@ -22,19 +22,20 @@ inline CellEvidence cellOfRun(const EvidenceRuns& runs, const EvidenceRuns::Run&
   return c;
 }
 
-// Probability addition, paper 000 eq 8 (AdditionRule).
+// Probability addition, paper 000 eq 8 (AdditionRule): the single-precision cell widened, the
+// update in double, rounded once.
 [[gnu::always_inline]] inline void additionEmpty(float empty, EmptyEvidence& cell) {
   if (empty > 0.0) {
-    double& e = cell.emp;
-    e = e + empty - e * empty;
+    const double e = cell.emp;
+    cell.emp = static_cast<float>(e + empty - e * empty);
   }
 }
 [[gnu::always_inline]] inline void additionOccupied(float occupied, double scale,
                                                     OccupiedEvidence& cell) {
   if (occupied > 0.0) {
     const double po = occupied * scale;
-    double& o = cell.occ;
-    o = o + po - o * po;
+    const double o = cell.occ;
+    cell.occ = static_cast<float>(o + po - o * po);
   }
 }
 

@@ -12,12 +12,13 @@
 namespace sg {
 
 // Probability addition (paper 000 eqs 7–8, paper 001 §3.1). Emp and Occ in planes of their own: a
-// cone writes one or the other to a cell.
+// cone writes one or the other to a cell. Each is kept in single precision (docs/models.md,
+// "Single-precision cells"): an update widens it, computes in double and rounds once.
 struct EmptyEvidence {
-  double emp;
+  float emp;
 };
 struct OccupiedEvidence {
-  double occ;
+  float occ;
 };
 class AdditionRule final : public RuleOnCells<AdditionRule, EmptyEvidence, OccupiedEvidence> {
  public:
@@ -25,7 +26,7 @@ class AdditionRule final : public RuleOnCells<AdditionRule, EmptyEvidence, Occup
   const RuleInfo& info() const override { return staticInfo(); }
   void configure(const ParameterSet& params) override;
   CellLayout layout() const override {
-    return CellLayout::of(EmptyEvidence{0.0}, OccupiedEvidence{0.0});
+    return CellLayout::of(EmptyEvidence{0.0f}, OccupiedEvidence{0.0f});
   }
   void apply(const Footprint& footprint, Grid& grid) const override;
   void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;

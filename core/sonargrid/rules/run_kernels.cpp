@@ -4,8 +4,9 @@
 // Each kernel takes four cells at a time in double lanes (four consecutive cells of a run, or four
 // listed cells gathered from the plane and scattered back), the model's floats widened as apply()
 // widens them, and repeats cell_updates.h's operations in its order; a lane's `if` is a select of
-// the updated and the old value. Dempster–Shafer's cells with both kinds of evidence
-// (which no model gives) go through cell_updates.h itself, one at a time.
+// the updated and the old value. Addition's single-precision cells are widened on load and rounded
+// to float on store, as cell_updates.h does one cell at a time. Dempster–Shafer's cells with both
+// kinds of evidence (which no model gives) go through cell_updates.h itself, one at a time.
 #include "sonargrid/rules/run_kernels.h"
 
 #include <algorithm>
@@ -48,10 +49,15 @@ constexpr int W = 4;  // written out as four in the gathers and scatters below
 using Doubles = double __attribute__((vector_size(8 * W)));
 using Floats = float __attribute__((vector_size(4 * W)));
 
-[[gnu::always_inline]] inline Doubles widen(const float* p) {
+[[gnu::always_inline]] inline Doubles widen(const void* p) {
   Floats f;
   std::memcpy(&f, p, sizeof f);
   return __builtin_convertvector(f, Doubles);
+}
+// W doubles rounded to float (as static_cast<float> rounds each) and stored at p.
+[[gnu::always_inline]] inline void narrow(void* p, Doubles v) {
+  const Floats f = __builtin_convertvector(v, Floats);
+  std::memcpy(p, &f, sizeof f);
 }
 [[gnu::always_inline]] inline Doubles load(const void* p) {
   Doubles v;
@@ -152,8 +158,7 @@ struct OneKind {
   cellrule::dempsterShafer(occupied, empty, cell);
 }
 
-static_assert(sizeof(EmptyEvidence) == sizeof(double) &&
-              sizeof(OccupiedEvidence) == sizeof(double));
+static_assert(sizeof(EmptyEvidence) == sizeof(float) && sizeof(OccupiedEvidence) == sizeof(float));
 static_assert(sizeof(BayesCell) == sizeof(double) && sizeof(LogCell) == sizeof(double));
 static_assert(sizeof(LogOddsCell) == sizeof(double));
 static_assert(sizeof(DempsterShaferCell) == 2 * sizeof(double));
@@ -165,8 +170,8 @@ SG_RUN_CLONES void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp) {
             [](const float* empty, const float*, const float*, EmptyEvidence* cells)
                 SG_INLINE_LAMBDA {
                   const Doubles e = widen(empty);
-                  const Doubles m = load(cells);
-                  store(cells, e > 0.0 ? m + e - m * e : m);
+                  const Doubles m = widen(cells);
+                  narrow(cells, e > 0.0 ? m + e - m * e : m);
                 });
 }
 
@@ -175,8 +180,8 @@ SG_RUN_CLONES void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* 
             [](const float*, const float* occupied, const float*, OccupiedEvidence* cells)
                 SG_INLINE_LAMBDA {
                   const Doubles po = widen(occupied) * 1.0;  // the scale
-                  const Doubles m = load(cells);
-                  store(cells, po > 0.0 ? m + po - m * po : m);
+                  const Doubles m = widen(cells);
+                  narrow(cells, po > 0.0 ? m + po - m * po : m);
                 });
 }
 
