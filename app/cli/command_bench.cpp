@@ -81,9 +81,12 @@ double loadSeconds() {
   return s;
 }
 
-// Bytes per cell of a rule: its planes and the grid's mark (Grid::bytesPerCell) plus the layers of
-// a snapshot, which the view keeps (OccupancyMap).
+// Bytes per cell of a rule: its planes and the grid's mark (Grid::bytesPerCell), what a snapshot
+// keeps of its own (OccupancyMap::bytesPerCell: the level and observed flag; its other layers read
+// the grid's planes, which it shares), and the byte per cell the OpenGL view keeps of the levels it
+// uploaded (GridGlSurface, to send only the rows that changed).
 Json bytesPerCell() {
+  constexpr std::size_t kViewUploaded = 1;
   Json out = Json::object();
   const GridSpec spec = GridSpec::covering(Position(0, 0), Position(1, 1), 0.05, 0.0);
   for (const std::string& rule : updateRuleNames()) {
@@ -92,10 +95,7 @@ Json bytesPerCell() {
     settings.model = compatibility(settings.model, rule).allowed ? "hpf" : "himm";
     Mapper mapper(SonarRing::pioneer3dx(), spec, settings);
     const OccupancyMap m = mapper.snapshot();
-    const std::size_t view = sizeof(m.probability[0]) + sizeof(m.native[0]) +
-                             sizeof(m.evidence[0]) + sizeof(m.level[0]) + sizeof(m.filled[0]) +
-                             sizeof(m.observed[0]);
-    out[rule] = mapper.storage().bytesPerCell() + view;
+    out[rule] = mapper.storage().bytesPerCell() + m.bytesPerCell() + kViewUploaded;
   }
   return out;
 }

@@ -30,11 +30,43 @@ double shiftedOrigin(double origin, double cells, double cellSize) {
 
 Grid::Storage Grid::allocate(std::size_t cells, std::size_t bytes) {
   // Not value-initialised: fillUnknown() writes every cell.
-  return Storage(new (std::align_val_t{CellLayout::kAlignment}) std::byte[cells * bytes]);
+  return Storage(new (std::align_val_t{CellLayout::kAlignment}) std::byte[cells * bytes],
+                 AlignedDelete{});
 }
 
 void Grid::checkType(bool matches) {
   if (!matches) throw std::logic_error("a rule was given a grid made for another rule's cells");
+}
+
+void Grid::throwShared() {
+  throw std::logic_error("a grid's cells were to be written while a snapshot shares them");
+}
+
+Grid Grid::sharedCells() const {
+  Grid g;
+  g.spec_ = spec_;
+  g.layout_ = layout_;
+  g.planes_ = planes_;
+  return g;
+}
+
+bool Grid::shared() const {
+  for (std::size_t p = 0; p < layout_.planes(); ++p)
+    if (planes_[p].use_count() > 1) return true;
+  return false;
+}
+
+void Grid::unshare() {
+  // use_count() may still count a sharer that another thread is letting go: then the plane is
+  // copied once more than it had to be, never written while shared (only this grid hands out
+  // shares, and not while it is being written).
+  for (std::size_t p = 0; p < layout_.planes(); ++p) {
+    if (planes_[p].use_count() <= 1) continue;
+    const std::size_t bytes = cellCount() * layout_.bytes(p);
+    Storage own = allocate(cellCount(), layout_.bytes(p));
+    std::memcpy(own.get(), planes_[p].get(), bytes);
+    planes_[p] = std::move(own);
+  }
 }
 
 Grid::Grid(const GridSpec& spec, const CellLayout& layout) : spec_(spec), layout_(layout) {
@@ -73,8 +105,10 @@ void Grid::fillUnknown(std::size_t plane, std::byte* storage, std::size_t begin,
 }
 
 void Grid::clear() {
-  for (std::size_t p = 0; p < layout_.planes(); ++p)
+  for (std::size_t p = 0; p < layout_.planes(); ++p) {
+    if (planes_[p].use_count() > 1) planes_[p] = allocate(cellCount(), layout_.bytes(p));
     fillUnknown(p, planes_[p].get(), 0, cellCount());
+  }
   std::fill(marks_.begin(), marks_.end(), std::uint8_t{0});
   allDirty_ = true;
 }

@@ -11,6 +11,10 @@
 // number of cells), every cell keeps its value at its world position, and the new cells are
 // unknown and unobserved. It grows with slack, so a robot that drives on a little at a time makes
 // it reallocate a logarithmic number of times, not per scan.
+//
+// A snapshot shares the grid's cell values rather than copying them (sharedCells()): the planes are
+// reference counted, and the grid copies a plane that a snapshot still holds before it is written
+// again (unshare()), so what a snapshot reads never changes (docs/models.md, "Snapshots").
 
 #include <array>
 #include <cstddef>
@@ -104,6 +108,20 @@ class Grid {
   Grid(const GridSpec& spec, const CellLayout& layout);
   Grid(Grid&&) noexcept = default;
   Grid& operator=(Grid&&) noexcept = default;
+  Grid(const Grid&) = delete;  // sharedCells() shares the values; nothing copies a grid by accident
+  Grid& operator=(const Grid&) = delete;
+
+  // A grid of this one's spec, layout and cell values, sharing their storage, for reading them
+  // only: its cells<Cell>() const give the values as they are now, and it has no marks (observed()
+  // and the dirty rows are not its to answer). The values stay as they are for as long as the
+  // returned grid lives: this grid copies a shared plane before writing it (unshare()).
+  Grid sharedCells() const;
+  // Whether a grid from sharedCells() still holds any of the planes.
+  bool shared() const;
+  // Makes every plane this grid's own again, copying the ones a sharedCells() grid still holds.
+  // Whoever writes cells calls it first (the mapper, before each batch of readings); the writing
+  // accessors below throw std::logic_error on a plane still shared.
+  void unshare();
 
   const GridSpec& spec() const { return spec_; }
   const CellLayout& layout() const { return layout_; }
@@ -121,6 +139,7 @@ class Grid {
   template <class Cell>
   Cell* cells(std::size_t plane = 0) {
     checkType(layout_.holds<Cell>(plane));
+    checkWritable(plane);
     return std::launder(reinterpret_cast<Cell*>(planes_[plane].get()));
   }
   template <class Cell>
@@ -134,6 +153,7 @@ class Grid {
   // byte.
   std::uint8_t* bytes(std::size_t plane = 0) {
     checkType(plane < layout_.planes() && layout_.bytes(plane) == 1);
+    checkWritable(plane);
     return reinterpret_cast<std::uint8_t*>(planes_[plane].get());
   }
 
@@ -142,7 +162,8 @@ class Grid {
   // observed() of cells [begin, end) as 0 or 1 into out[begin, end) (OccupancyMap::observed).
   void copyObserved(std::size_t begin, std::size_t end, std::uint8_t* out) const;
 
-  // Every cell unknown and unobserved again (the spec stays); every row dirty.
+  // Every cell unknown and unobserved again (the spec stays); every row dirty. A shared plane is
+  // left to its sharers and replaced.
   void clear();
 
   // Marks the footprint's cells observed and written since the last snapshot (so their rows are
@@ -194,7 +215,8 @@ class Grid {
       ::operator delete[](p, std::align_val_t{CellLayout::kAlignment});
     }
   };
-  using Storage = std::unique_ptr<std::byte[], AlignedDelete>;
+  // Reference counted: sharedCells() hands the planes to a snapshot.
+  using Storage = std::shared_ptr<std::byte[]>;
 
   // Cells a box lacks on each side.
   struct Need {
@@ -203,6 +225,11 @@ class Grid {
   Need need(const Position& lo, const Position& hi) const;
   static Storage allocate(std::size_t cells, std::size_t bytes);
   static void checkType(bool matches);
+  // Throws std::logic_error when a sharedCells() grid still holds the plane (unshare() first).
+  void checkWritable(std::size_t plane) const {
+    if (planes_[plane].use_count() > 1) throwShared();
+  }
+  [[noreturn]] static void throwShared();
   // Writes plane `plane`'s unknown value into cells [begin, end) of `storage`.
   void fillUnknown(std::size_t plane, std::byte* storage, std::size_t begin, std::size_t end) const;
 

@@ -88,7 +88,8 @@ constexpr std::size_t kPostBatch = 16;
 }  // namespace
 
 void Mapper::reset() {
-  grid_.clear();
+  live_.derive(nullptr);
+  grid_.clear();  // replaces, rather than writes, the planes a snapshot shares
   readings_ = 0;
   if (observer_) observer_->reset(grid_.cellCount());
 }
@@ -129,7 +130,13 @@ void Mapper::applyFootprint(const Footprint& footprint) {
   ++readings_;
 }
 
+void Mapper::beginWriting() {
+  live_.derive(nullptr);
+  grid_.unshare();
+}
+
 void Mapper::integrate(const Scan& scan, double until) {
+  beginWriting();
   const Pose2D& robot =
       settings_.pose == PoseSource::Truth && scan.truth ? *scan.truth : scan.odometry;
   for (const Reading& r : scan.readings) {
@@ -282,6 +289,7 @@ bool orderedPipeline(std::size_t n, unsigned threads, std::size_t slots, std::si
 }  // namespace
 
 bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bool>* cancel) {
+  beginWriting();
   const std::size_t n = beams.size();
   // Straight into the grid without footprints when the model and rule can (HIMM's axis: its
   // cells listed on any thread, folded in in order; SensorModel::listDirect).
@@ -527,29 +535,28 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
 }
 
 OccupancyMap Mapper::snapshot() const {
-  return occupancyMapOf(grid_, *rule_, settings_.model, settings_.rule);
+  return occupancyMapOf(grid_, rule_, settings_.model, settings_.rule);
 }
 
-OccupancyMap occupancyMapOf(const Grid& grid, const UpdateRule& rule, const std::string& model,
-                            const std::string& ruleName) {
+OccupancyMap occupancyMapOf(const Grid& grid, std::shared_ptr<const UpdateRule> rule,
+                            const std::string& model, const std::string& ruleName) {
   OccupancyMap m;
   m.spec = grid.spec();
   m.model = model;
   m.rule = ruleName;
   const std::size_t n = grid.cellCount();
-  m.probability.resize(n);
-  m.native.resize(n);
   m.level.resize(n);
-  m.filled.resize(n);
   m.observed.resize(n);
-  m.evidence.resize(n);
   grid.copyObserved(0, n, m.observed.data());
   // Split between threads for large grids: a 5 cm grid of a room and its ghosts is 200 000 cells
   // and this is on the path from a slider to the picture.
   const auto parts = static_cast<unsigned>(
       std::clamp<std::size_t>(n / kSnapshotCellsPerThread, 1, parallelThreads()));
-  runParallel(parts,
-              [&](unsigned k) { rule.writeLayers(grid, m, n * k / parts, n * (k + 1) / parts); });
+  std::uint8_t* const level = m.level.data();
+  runParallel(parts, [&](unsigned k) {
+    rule->writeLevels(grid, level, n * k / parts, n * (k + 1) / parts);
+  });
+  m.derive(std::make_shared<const RuleCells>(std::move(rule), grid.sharedCells()));
   return m;
 }
 
@@ -605,7 +612,7 @@ bool Mapper::append(std::span<const Scan> scans, double until, const std::atomic
 const OccupancyMap& Mapper::liveMap(RowBand* rewritten) {
   const GridSpec& spec = grid_.spec();
   const std::vector<RowBand> runs = grid_.takeDirtyRuns();
-  if (live_.spec != spec || live_.probability.size() != grid_.cellCount()) {
+  if (live_.spec != spec || live_.level.size() != grid_.cellCount()) {
     live_ = snapshot();
     if (rewritten) *rewritten = RowBand{0, spec.height};
     return live_;
@@ -614,9 +621,10 @@ const OccupancyMap& Mapper::liveMap(RowBand* rewritten) {
   for (const RowBand& run : runs) {
     const std::size_t begin = static_cast<std::size_t>(run.begin) * width;
     const std::size_t end = static_cast<std::size_t>(run.end) * width;
-    rule_->writeLayers(grid_, live_, begin, end);
+    rule_->writeLevels(grid_, live_.level.data(), begin, end);
     grid_.copyObserved(begin, end, live_.observed.data());
   }
+  live_.derive(std::make_shared<const RuleCells>(rule_, grid_.sharedCells()));
   if (rewritten)
     *rewritten = runs.empty() ? RowBand{} : RowBand{runs.front().begin, runs.back().end};
   return live_;

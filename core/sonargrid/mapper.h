@@ -57,10 +57,12 @@ struct MapperSettings {
 // model or rule name.
 ParameterSet defaultParameters(const std::string& model, const std::string& rule);
 
-// The map of `grid` as `rule` (the rule the grid was made for) reads it, named by the model and
-// rule: what Mapper::snapshot() gives (on the thread policy's threads for a large grid).
-OccupancyMap occupancyMapOf(const Grid& grid, const UpdateRule& rule, const std::string& model,
-                            const std::string& ruleName);
+// The map of `grid` as `rule` (the rule the grid was made for, configured for good) reads it, named
+// by the model and rule: what Mapper::snapshot() gives. Its levels and observed flags are computed
+// (on the thread policy's threads for a large grid); its other layers are read from the grid's cell
+// values, which the map shares (Grid::sharedCells()) and keeps alive with the rule.
+OccupancyMap occupancyMapOf(const Grid& grid, std::shared_ptr<const UpdateRule> rule,
+                            const std::string& model, const std::string& ruleName);
 
 class Mapper {
  public:
@@ -111,6 +113,8 @@ class Mapper {
 
   // Optional; not owned. Reset with the mapper and fed every footprint after the rule applies it.
   void setObserver(FootprintObserver* observer);
+  // The map as it is now. It shares the grid's cell values; mapping more copies any the snapshot
+  // still holds before writing them, so the snapshot never changes (Grid::sharedCells()).
   OccupancyMap snapshot() const;
   // A snapshot the mapper keeps and brings up to date: only the rows written since the previous
   // call are computed again (every row after reset() or growth, and on the first call), so a live
@@ -135,11 +139,14 @@ class Mapper {
                         unsigned threads);
   bool integrateDirect(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
                        unsigned threads);
+  // Before the cells are written: liveMap()'s own map lets go of the grid's cells, and the grid
+  // copies the planes that snapshots still share.
+  void beginWriting();
 
   SonarRing ring_;
   MapperSettings settings_;
   std::unique_ptr<SensorModel> model_;
-  std::unique_ptr<UpdateRule> rule_;
+  std::shared_ptr<UpdateRule> rule_;  // shared with the snapshots, which read their layers by it
   Grid grid_;
   std::shared_ptr<const BeamTables> tables_;
   OccupancyMap live_;  // liveMap()'s, empty until it is first asked for

@@ -35,10 +35,12 @@ std::uint64_t digest(const sg::OccupancyMap& m) {
     const auto* p = static_cast<const unsigned char*>(data);
     for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ull;
   };
-  add(m.probability.data(), m.probability.size() * sizeof(double));
-  add(m.native.data(), m.native.size() * sizeof(double));
+  const std::vector<double> probability = m.probability.values(), native = m.native.values();
+  const std::vector<std::uint8_t> filled = m.filled.values();
+  add(probability.data(), probability.size() * sizeof(double));
+  add(native.data(), native.size() * sizeof(double));
   add(m.level.data(), m.level.size());
-  add(m.filled.data(), m.filled.size());
+  add(filled.data(), filled.size());
   add(m.observed.data(), m.observed.size());
   return h;
 }

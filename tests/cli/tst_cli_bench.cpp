@@ -128,16 +128,17 @@ void TstCliBench::quickJson() {
 void TstCliBench::bytesPerCell_data() {
   QTest::addColumn<QString>("rule");
   QTest::addColumn<int>("bytes");
-  // The rule's planes (rule_classes.h), 1 byte of observed/written mark (grid.h) and the snapshot
-  // a view reads (occupancy_map.h): probability, native and evidence as doubles, level, filled and
-  // observed as bytes, 8 + 8 + 8 + 1 + 1 + 1 = 27.
-  QTest::newRow("addition") << "addition" << 4 + 4 + 1 + 27;  // Emp and Occ, floats
-  QTest::newRow("bayes") << "bayes" << 8 + 1 + 27;            // p, a double
-  QTest::newRow("bayes-recursive") << "bayes-recursive" << 8 + 1 + 27;
-  QTest::newRow("log") << "log" << 8 + 1 + 27;                           // Emp · Occ
-  QTest::newRow("logodds") << "logodds" << 8 + 1 + 27;                   // the odds
-  QTest::newRow("himm") << "himm" << 1 + 1 + 27;                         // CV, a byte
-  QTest::newRow("dempster-shafer") << "dempster-shafer" << 16 + 1 + 27;  // m(occ), m(emp)
+  // The rule's planes (rule_classes.h), 1 byte of observed/written mark (grid.h), what a snapshot
+  // keeps of its own (occupancy_map.h: level and observed, a byte each; its other layers read the
+  // planes it shares with the grid) and the OpenGL view's copy of the uploaded levels, 1 byte:
+  // 1 + 2 + 1 = 4 besides the planes.
+  QTest::newRow("addition") << "addition" << 4 + 4 + 4;  // Emp and Occ, floats
+  QTest::newRow("bayes") << "bayes" << 8 + 4;            // p, a double
+  QTest::newRow("bayes-recursive") << "bayes-recursive" << 8 + 4;
+  QTest::newRow("log") << "log" << 8 + 4;                           // Emp · Occ
+  QTest::newRow("logodds") << "logodds" << 8 + 4;                   // the odds
+  QTest::newRow("himm") << "himm" << 1 + 4;                         // CV, a byte
+  QTest::newRow("dempster-shafer") << "dempster-shafer" << 16 + 4;  // m(occ), m(emp), doubles
 }
 
 void TstCliBench::bytesPerCell() {

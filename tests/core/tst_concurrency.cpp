@@ -149,10 +149,17 @@ class FaultyRule final : public UpdateRule {
   std::uint8_t level(const Grid& grid, std::size_t cell) const override {
     return real_->level(grid, cell);
   }
-  void writeLayers(const Grid& grid, OccupancyMap& map, std::size_t begin,
+  double evidence(const Grid& grid, std::size_t cell) const override {
+    return real_->evidence(grid, cell);
+  }
+  void writeLevels(const Grid& grid, std::uint8_t* level, std::size_t begin,
                    std::size_t end) const override {
     fault_.maybeThrow("rule");
-    real_->writeLayers(grid, map, begin, end);
+    real_->writeLevels(grid, level, begin, end);
+  }
+  void writeLayer(const Grid& grid, DerivedLayer layer, std::size_t begin, std::size_t end,
+                  void* out) const override {
+    real_->writeLayer(grid, layer, begin, end, out);
   }
 
  private:
@@ -192,10 +199,8 @@ const Dataset& room() {
 
 bool sameLayers(const OccupancyMap& a, const OccupancyMap& b) {
   return a.spec == b.spec && a.level == b.level && a.filled == b.filled &&
-         a.observed == b.observed &&
-         std::memcmp(a.probability.data(), b.probability.data(),
-                     a.probability.size() * sizeof(double)) == 0 &&
-         std::memcmp(a.native.data(), b.native.data(), a.native.size() * sizeof(double)) == 0;
+         a.observed == b.observed && a.probability.identical(b.probability) &&
+         a.native.identical(b.native) && a.evidence.identical(b.evidence);
 }
 
 // Sees every footprint: makes the mapper use its ordered pipeline.
@@ -541,7 +546,7 @@ void TstConcurrency::failureReachesTheCaller() {
   const ScopedThreadCount policy(threads);
   Fault fault;
   fault.onCaller = failure.endsWith("on caller");
-  // A snapshot calls writeLayers once per thread: its first call on a worker fails.
+  // A snapshot calls writeLevels once per thread: its first call on a worker fails.
   fault.after = path == "snapshot" ? 0 : 200;
   // Models and rules are wrapped when they are made, so before the mapper is built; a thread
   // start is made to fail after, so that it is the path's own start that fails (and not, say,

@@ -71,6 +71,7 @@ class TstGrid : public QObject {
   void dirtyRowsAreTheRowsWritten();
   void clearMakesEveryRowDirty();
   void wrongCellTypeIsRefused();
+  void sharedCellsStayAsTheyWere();
 };
 
 void TstGrid::newGridIsUnknown() {
@@ -256,6 +257,56 @@ void TstGrid::wrongCellTypeIsRefused() {
   QVERIFY_THROWS_EXCEPTION(std::logic_error, g.cells<Count>(0));
   QVERIFY_THROWS_EXCEPTION(std::logic_error, g.cells<Pair>(1));
   QVERIFY_THROWS_EXCEPTION(std::logic_error, g.cells<Pair>(2));  // no third plane
+}
+
+void TstGrid::sharedCellsStayAsTheyWere() {
+  // What a snapshot reads (sharedCells()) keeps the values it was given while the grid is written
+  // again, cleared and grown; a shared plane is not handed out for writing until unshare().
+  Grid g = twoPlanes(spec(0, 0, 5, 4));
+  fillDistinct(g);
+  const Grid seen = g.sharedCells();
+  QVERIFY(g.shared());
+  QCOMPARE(seen.spec(), g.spec());
+  QVERIFY_THROWS_EXCEPTION(std::logic_error, g.cells<Pair>(0));
+  QVERIFY_THROWS_EXCEPTION(std::logic_error, g.cells<Count>(1));
+  g.unshare();
+  QVERIFY(!g.shared());
+  g.cells<Pair>(0)[7] = Pair{-3.0, -4.0};
+  g.cells<Count>(1)[7] = Count{200};
+  const Grid& written = g;
+  for (std::size_t i = 0; i < g.cellCount(); ++i) {
+    // fillDistinct's values, in the shared cells and (but for cell 7) in the grid.
+    const Pair p{static_cast<double>(i), 1.0 / (1.0 + static_cast<double>(i))};
+    QVERIFY(sameBytes(&seen.cells<Pair>(0)[i], &p, sizeof(Pair)));
+    QCOMPARE(seen.cells<Count>(1)[i].n, static_cast<std::uint8_t>(i % 251));
+    if (i != 7) QVERIFY(sameBytes(&written.cells<Pair>(0)[i], &p, sizeof(Pair)));
+  }
+  QCOMPARE(written.cells<Pair>(0)[7].a, -3.0);
+  QCOMPARE(written.cells<Count>(1)[7].n, std::uint8_t{200});
+
+  // clear() while shared: the sharer keeps cell 7's write, the grid is unknown again and its own.
+  const Grid beforeClear = g.sharedCells();
+  g.clear();
+  QVERIFY(!g.shared());
+  QCOMPARE(beforeClear.cells<Pair>(0)[7].a, -3.0);
+  QCOMPARE(written.cells<Pair>(0)[7].a, kUnknownPair.a);
+  g.cells<Pair>(0)[7] = Pair{9.0, 9.0};  // writable without unshare(): clear() replaced it
+  QCOMPARE(beforeClear.cells<Pair>(0)[7].a, -3.0);
+
+  // Growth while shared: the sharer keeps its limits and values, the grown grid is its own.
+  const Grid beforeGrowth = g.sharedCells();
+  QVERIFY(g.growToCover(Position(-0.2, -0.2), Position(0.1, 0.1)));
+  QVERIFY(!g.shared());
+  QCOMPARE(beforeGrowth.spec(), spec(0, 0, 5, 4));
+  QCOMPARE(beforeGrowth.cells<Pair>(0)[7].a, 9.0);
+  g.cells<Pair>(0)[0] = Pair{1.0, 1.0};
+
+  // A plane whose sharers are gone is the grid's again, kept rather than copied.
+  const Pair* const storage = written.cells<Pair>(0);
+  { const Grid brief = g.sharedCells(); }
+  QVERIFY(!g.shared());
+  g.unshare();
+  QCOMPARE(static_cast<const Pair*>(g.cells<Pair>(0)), storage);
 }
 
 QTEST_GUILESS_MAIN(TstGrid)

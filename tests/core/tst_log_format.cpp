@@ -518,10 +518,10 @@ void TstLogFormat::everyLoggerGivesTheSameReadings() {
   const sg::OccupancyMap a = fromCarmen.snapshot();
   const sg::OccupancyMap b = fromPlayer.snapshot();
   QVERIFY(a.filledCount() > 0);
-  QCOMPARE(bytesOf(b.probability), bytesOf(a.probability));
-  QCOMPARE(bytesOf(b.native), bytesOf(a.native));
+  QCOMPARE(bytesOf(b.probability.values()), bytesOf(a.probability.values()));
+  QCOMPARE(bytesOf(b.native.values()), bytesOf(a.native.values()));
   QCOMPARE(bytesOf(b.level), bytesOf(a.level));
-  QCOMPARE(bytesOf(b.filled), bytesOf(a.filled));
+  QCOMPARE(bytesOf(b.filled.values()), bytesOf(a.filled.values()));
   QCOMPARE(bytesOf(b.observed), bytesOf(a.observed));
 }
 

@@ -4,6 +4,8 @@
 
 #include <QtTest>
 #include <algorithm>
+#include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <set>
@@ -70,10 +72,8 @@ struct Counter final : FootprintObserver {
 bool sameLayers(const OccupancyMap& a, const OccupancyMap& b) {
   // Bit-identical: compare the doubles' bytes, not their values within a tolerance.
   return a.spec == b.spec && a.level == b.level && a.filled == b.filled &&
-         a.observed == b.observed &&
-         std::memcmp(a.probability.data(), b.probability.data(),
-                     a.probability.size() * sizeof(double)) == 0 &&
-         std::memcmp(a.native.data(), b.native.data(), a.native.size() * sizeof(double)) == 0;
+         a.observed == b.observed && a.probability.identical(b.probability) &&
+         a.native.identical(b.native) && a.evidence.identical(b.evidence);
 }
 
 }  // namespace
@@ -107,6 +107,10 @@ class TstMapper : public QObject {
   void dirtyRowsAreTheRowsWritten();
   void streamFromAnotherThread();
   void appendErrors();
+  void snapshotsStayAsTaken_data();
+  void snapshotsStayAsTaken();
+  void snapshotLayersAreTheRules();
+  void snapshotReadWhileMapping();
 };
 
 void TstMapper::batchEqualsIncremental_data() {
@@ -583,6 +587,124 @@ void TstMapper::appendEqualsBatch() {
   }
 }
 
+void TstMapper::snapshotsStayAsTaken_data() {
+  batchEqualsIncremental_data();
+}
+
+void TstMapper::snapshotsStayAsTaken() {
+  // A snapshot reads its p(occupied), native value, evidence and filled flag from the grid's cells,
+  // which it shares rather than copies (docs/models.md, "Snapshots"). Mapping on must copy them
+  // before writing: every snapshot taken along the way (and every copy of the live map) still
+  // holds, bit for bit, what a copy of its layers made when it was taken (hold()) holds, through
+  // append() with growth, integrate(), mapDataset() and reset().
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  const Dataset d = corridor(200);
+  MapperSettings s;
+  s.model = model.toStdString();
+  s.rule = rule.toStdString();
+  Mapper m(d.ring, seedGrid(d), s);
+  std::vector<OccupancyMap> taken, held;
+  auto take = [&](const OccupancyMap& snapshot) {
+    QVERIFY(snapshot.derived());
+    taken.push_back(snapshot);
+    held.push_back(snapshot);
+    held.back().hold();
+    QVERIFY(!held.back().derived());
+  };
+  const std::span<const Scan> all(d.scans);
+  QVERIFY(m.append(all.first(40)));
+  take(m.snapshot());
+  take(m.liveMap());
+  const GridSpec before = m.grid();
+  QVERIFY(m.append(all.subspan(40, 60)));  // 3 m further on: the grid grows
+  QVERIFY(m.grid() != before);
+  take(m.liveMap());
+  for (std::size_t k = 100; k < 110; ++k) m.integrate(d.scans[k]);
+  take(m.liveMap());
+  QVERIFY(m.mapDataset(d));
+  take(m.snapshot());
+  m.reset();
+  QVERIFY(m.append(all.first(5)));
+  for (std::size_t k = 0; k < taken.size(); ++k)
+    QVERIFY2(sameLayers(taken[k], held[k]), qPrintable(QString("snapshot %1").arg(k)));
+  // The snapshots differ from one another, so a snapshot that followed the grid would be seen.
+  QVERIFY(!sameLayers(held[0], held[4]) && !sameLayers(held[2], held[3]));
+}
+
+void TstMapper::snapshotLayersAreTheRules() {
+  // A mapped snapshot keeps only its levels and observed flags (2 bytes a cell); its other layers
+  // are the rule's reading of the grid's cells (UpdateRule::occupancy and the rest), bit for bit.
+  // Writing a layer of a copy makes that copy hold its own values and leaves the snapshot as it
+  // was.
+  const Dataset d = corridor(60);
+  for (const std::string rule : {"addition", "dempster-shafer", "logodds"}) {
+    MapperSettings s;
+    s.rule = rule;
+    Mapper m(d.ring, d.fittingGrid(PoseSource::Odometry, 0.05), s);
+    QVERIFY(m.mapDataset(d));
+    const OccupancyMap snapshot = m.snapshot();
+    QCOMPARE(snapshot.bytesPerCell(), std::size_t{2});
+    const Grid& g = m.storage();
+    const UpdateRule& r = m.rule();
+    std::size_t written = 0;
+    for (std::size_t i = 0; i < g.cellCount(); ++i) {
+      QCOMPARE(std::bit_cast<std::uint64_t>(snapshot.probability[i]),
+               std::bit_cast<std::uint64_t>(r.occupancy(g, i)));
+      QCOMPARE(std::bit_cast<std::uint64_t>(snapshot.native[i]),
+               std::bit_cast<std::uint64_t>(r.native(g, i)));
+      QCOMPARE(std::bit_cast<std::uint64_t>(snapshot.evidence[i]),
+               std::bit_cast<std::uint64_t>(r.evidence(g, i)));
+      QCOMPARE(snapshot.filled[i], static_cast<std::uint8_t>(r.filled(g, i) ? 1 : 0));
+      QCOMPARE(snapshot.level[i], r.level(g, i));
+      written += g.observed(i) ? 1 : 0;
+    }
+    QVERIFY(written > 0);
+    OccupancyMap copy = snapshot;
+    const double before = snapshot.probability[5];
+    copy.probability[5] = 0.25;
+    QVERIFY(!copy.probability.derived() && copy.native.derived());
+    QCOMPARE(copy.probability[5], 0.25);
+    QCOMPARE(copy.probability[6], snapshot.probability[6]);
+    QCOMPARE(snapshot.probability[5], before);
+    QCOMPARE(copy.bytesPerCell(), std::size_t{2 + 8});
+  }
+}
+
+void TstMapper::snapshotReadWhileMapping() {
+  // One thread reads a snapshot's layers while another maps on, as the view and the metrics read
+  // the map on show while the worker maps the next batch: the mapper copies the cells the snapshot
+  // shares before writing them, so the reader sees the same bits throughout, and under
+  // ThreadSanitizer (the sanitizer job, SONARGRID_THREADS=4) no write races with its reads.
+  const Dataset d = corridor(300);
+  MapperSettings s;
+  s.rule = "bayes";
+  // The grid the whole log fits: it never grows (growth would give the mapper new cells anyway).
+  Mapper m(d.ring, d.fittingGrid(PoseSource::Odometry, 0.05), s);
+  for (std::size_t k = 0; k < 100; ++k) m.integrate(d.scans[k]);
+  const OccupancyMap shown = m.liveMap();
+  OccupancyMap expected = shown;
+  expected.hold();
+  std::atomic<bool> done{false};
+  std::atomic<int> reads{0};
+  bool same = true;
+  std::thread reader([&] {
+    do {
+      same = same && sameLayers(shown, expected);
+      reads.fetch_add(1);
+    } while (!done.load());
+  });
+  for (std::size_t k = 100; k < 300; ++k) {
+    m.integrate(d.scans[k]);
+    if (k % 20 == 0) m.liveMap();
+  }
+  done.store(true);
+  reader.join();
+  QVERIFY(same);
+  QVERIFY(reads.load() >= 1);
+  QVERIFY(!sameLayers(m.snapshot(), expected));  // the mapper went on
+}
+
 void TstMapper::growthKeepsEveryValue_data() {
   QTest::addColumn<QString>("model");
   QTest::addColumn<QString>("rule");
@@ -624,16 +746,20 @@ void TstMapper::growthKeepsEveryValue() {
     QVERIFY(after.contains(c));
     const std::size_t j = after.linear(c);
     fromOld[j] = 1;
-    QVERIFY(std::memcmp(&grown.probability[j], &old.probability[i], sizeof(double)) == 0);
-    QVERIFY(std::memcmp(&grown.native[j], &old.native[i], sizeof(double)) == 0);
+    QCOMPARE(std::bit_cast<std::uint64_t>(grown.probability[j]),
+             std::bit_cast<std::uint64_t>(old.probability[i]));
+    QCOMPARE(std::bit_cast<std::uint64_t>(grown.native[j]),
+             std::bit_cast<std::uint64_t>(old.native[i]));
     QCOMPARE(grown.level[j], old.level[i]);
     QCOMPARE(grown.filled[j], old.filled[i]);
     QCOMPARE(grown.observed[j], old.observed[i]);
   }
   for (std::size_t j = 0; j < grown.level.size(); ++j) {
     if (fromOld[j]) continue;
-    QVERIFY(std::memcmp(&grown.probability[j], &unknown.probability[0], sizeof(double)) == 0);
-    QVERIFY(std::memcmp(&grown.native[j], &unknown.native[0], sizeof(double)) == 0);
+    QCOMPARE(std::bit_cast<std::uint64_t>(grown.probability[j]),
+             std::bit_cast<std::uint64_t>(unknown.probability[0]));
+    QCOMPARE(std::bit_cast<std::uint64_t>(grown.native[j]),
+             std::bit_cast<std::uint64_t>(unknown.native[0]));
     QCOMPARE(grown.level[j], unknown.level[0]);
     QCOMPARE(grown.filled[j], std::uint8_t{0});
     QCOMPARE(grown.observed[j], std::uint8_t{0});

@@ -81,10 +81,8 @@ OccupancyMap batchOn(const Dataset& data, std::size_t count, const MapperSetting
 
 bool sameLayers(const OccupancyMap& a, const OccupancyMap& b) {
   return a.spec == b.spec && a.level == b.level && a.filled == b.filled &&
-         a.observed == b.observed &&
-         std::memcmp(a.probability.data(), b.probability.data(),
-                     a.probability.size() * sizeof(double)) == 0 &&
-         std::memcmp(a.native.data(), b.native.data(), a.native.size() * sizeof(double)) == 0;
+         a.observed == b.observed && a.probability.identical(b.probability) &&
+         a.native.identical(b.native) && a.evidence.identical(b.evidence);
 }
 
 std::vector<Scan> scansOf(const Dataset& d, std::size_t from, std::size_t to) {

@@ -41,10 +41,8 @@ MapperSettings settingsFor(const std::string& model, const std::string& rule) {
 
 bool sameLayers(const OccupancyMap& a, const OccupancyMap& b) {
   return a.spec == b.spec && a.level == b.level && a.filled == b.filled &&
-         a.observed == b.observed &&
-         std::memcmp(a.probability.data(), b.probability.data(),
-                     a.probability.size() * sizeof(double)) == 0 &&
-         std::memcmp(a.native.data(), b.native.data(), a.native.size() * sizeof(double)) == 0;
+         a.observed == b.observed && a.probability.identical(b.probability) &&
+         a.native.identical(b.native) && a.evidence.identical(b.evidence);
 }
 
 app::VirtualRobotHost::Options virtualRobot(std::optional<RouteKind> route = RouteKind::InMotion) {

@@ -101,19 +101,46 @@ class UpdateRule {
   virtual double native(const Grid& grid, std::size_t cell) const = 0;
   virtual bool filled(const Grid& grid, std::size_t cell) const = 0;  // occupied beats free
   virtual std::uint8_t level(const Grid& grid, std::size_t cell) const = 0;
-  // Cells [begin, end) of the four layers of `map` (already sized to the grid) from the four
-  // functions above, with the per-cell calls inlined (RuleOnCells): a re-map's snapshot is 4 × 200
-  // 000 virtual calls otherwise, several ms of a slider's latency. Disjoint ranges may be written
-  // from several threads at once.
-  virtual void writeLayers(const Grid& grid, OccupancyMap& map, std::size_t begin,
+  // The rule's certainty that the cell is occupied (OccupancyMap::evidence).
+  virtual double evidence(const Grid& grid, std::size_t cell) const = 0;
+  // level() of cells [begin, end) into level[begin, end), with the per-cell calls inlined
+  // (RuleOnCells): a re-map's snapshot is 200 000 virtual calls otherwise, on the path from a
+  // slider to the picture. Disjoint ranges may be written from several threads at once.
+  virtual void writeLevels(const Grid& grid, std::uint8_t* level, std::size_t begin,
                            std::size_t end) const = 0;
+  // One derived layer of cells [begin, end) into out[0, end − begin) (doubles, or bytes for
+  // DerivedLayer::Filled), inlined likewise: what holding a snapshot's layers costs.
+  virtual void writeLayer(const Grid& grid, DerivedLayer layer, std::size_t begin, std::size_t end,
+                          void* out) const = 0;
+};
+
+// A rule's layers of the cell values a snapshot shares (Grid::sharedCells()): what a mapped
+// OccupancyMap reads its p(occupied), native value, evidence and filled flag from. It keeps the
+// rule (which nothing configures again) and the shared cells alive.
+class RuleCells final : public DerivedCells {
+ public:
+  RuleCells(std::shared_ptr<const UpdateRule> rule, Grid cells)
+      : rule_(std::move(rule)), cells_(std::move(cells)) {}
+  double probability(std::size_t cell) const override { return rule_->occupancy(cells_, cell); }
+  double native(std::size_t cell) const override { return rule_->native(cells_, cell); }
+  double evidence(std::size_t cell) const override { return rule_->evidence(cells_, cell); }
+  std::uint8_t filled(std::size_t cell) const override {
+    return rule_->filled(cells_, cell) ? 1 : 0;
+  }
+  void fill(DerivedLayer layer, std::size_t begin, std::size_t end, void* out) const override {
+    rule_->writeLayer(cells_, layer, begin, end, out);
+  }
+
+ private:
+  std::shared_ptr<const UpdateRule> rule_;
+  Grid cells_;
 };
 
 // The base of every rule: `Rule` (the final class) keeps one value of each of `Cells` per cell,
 // plane by plane in that order (CellLayout), and says what a cell means through occupancyOf(),
 // nativeOf() and filledOf() (and levelOf(), which defaults to the level of the probability), each
 // given the cell's value in every plane. This class gives UpdateRule's per-cell reads and
-// writeLayers() from them, with direct, inlined calls.
+// writeLevels() and writeLayer() from them, with direct, inlined calls.
 template <class Rule, class... Cells>
 class RuleOnCells : public UpdateRule {
  public:
@@ -129,6 +156,9 @@ class RuleOnCells : public UpdateRule {
   std::uint8_t level(const Grid& grid, std::size_t cell) const final {
     return at(grid, cell, [this](const Cells&... c) { return self().levelOf(c...); });
   }
+  double evidence(const Grid& grid, std::size_t cell) const final {
+    return at(grid, cell, [this](const Cells&... c) { return self().evidenceOf(c...); });
+  }
   std::uint8_t levelOf(const Cells&... c) const {
     return levelOfProbability(self().occupancyOf(c...));
   }
@@ -140,9 +170,38 @@ class RuleOnCells : public UpdateRule {
     return e > 0.0 ? e : 0.0;
   }
 
-  void writeLayers(const Grid& grid, OccupancyMap& map, std::size_t begin,
+  void writeLevels(const Grid& grid, std::uint8_t* level, std::size_t begin,
                    std::size_t end) const final {
-    writeLayersOf(grid, map, begin, end, std::index_sequence_for<Cells...>{});
+    forCells(grid, begin, end,
+             [&](std::size_t i, const Cells&... c) { level[i] = self().levelOf(c...); });
+  }
+  void writeLayer(const Grid& grid, DerivedLayer layer, std::size_t begin, std::size_t end,
+                  void* out) const final {
+    const Rule& rule = self();
+    auto* const values = static_cast<double*>(out);
+    switch (layer) {
+      case DerivedLayer::Probability:
+        forCells(grid, begin, end, [&](std::size_t i, const Cells&... c) {
+          values[i - begin] = rule.occupancyOf(c...);
+        });
+        return;
+      case DerivedLayer::Native:
+        forCells(grid, begin, end, [&](std::size_t i, const Cells&... c) {
+          values[i - begin] = rule.nativeOf(c...);
+        });
+        return;
+      case DerivedLayer::Evidence:
+        forCells(grid, begin, end, [&](std::size_t i, const Cells&... c) {
+          values[i - begin] = rule.evidenceOf(c...);
+        });
+        return;
+      case DerivedLayer::Filled:
+        break;
+    }
+    auto* const flags = static_cast<std::uint8_t*>(out);
+    forCells(grid, begin, end, [&](std::size_t i, const Cells&... c) {
+      flags[i - begin] = rule.filledOf(c...) ? 1 : 0;
+    });
   }
 
  private:
@@ -157,24 +216,16 @@ class RuleOnCells : public UpdateRule {
     return atPlanes(grid, cell, fn, std::index_sequence_for<Cells...>{});
   }
 
-  template <std::size_t... Plane>
-  void writeLayersOf(const Grid& grid, OccupancyMap& map, std::size_t begin, std::size_t end,
-                     std::index_sequence<Plane...>) const {
+  // fn(i, cell values) for every cell i of [begin, end), each plane's pointer taken once.
+  template <class Fn>
+  static void forCells(const Grid& grid, std::size_t begin, std::size_t end, Fn&& fn) {
+    forCellsOf(grid, begin, end, fn, std::index_sequence_for<Cells...>{});
+  }
+  template <class Fn, std::size_t... Plane>
+  static void forCellsOf(const Grid& grid, std::size_t begin, std::size_t end, Fn&& fn,
+                         std::index_sequence<Plane...>) {
     const std::tuple<const Cells*...> planes{grid.cells<Cells>(Plane)...};
-    double* const probability = map.probability.data();
-    double* const native = map.native.data();
-    std::uint8_t* const level = map.level.data();
-    std::uint8_t* const filled = map.filled.data();
-    // The evidence layer when the map has one (a snapshot's always does).
-    double* const evidence = map.evidence.size() >= end ? map.evidence.data() : nullptr;
-    const Rule& rule = self();
-    for (std::size_t i = begin; i < end; ++i) {
-      probability[i] = rule.occupancyOf(std::get<Plane>(planes)[i]...);
-      native[i] = rule.nativeOf(std::get<Plane>(planes)[i]...);
-      level[i] = rule.levelOf(std::get<Plane>(planes)[i]...);
-      filled[i] = rule.filledOf(std::get<Plane>(planes)[i]...) ? 1 : 0;
-      if (evidence != nullptr) evidence[i] = rule.evidenceOf(std::get<Plane>(planes)[i]...);
-    }
+    for (std::size_t i = begin; i < end; ++i) fn(i, std::get<Plane>(planes)[i]...);
   }
 };
 

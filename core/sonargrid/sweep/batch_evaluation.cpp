@@ -421,10 +421,11 @@ VsdnsAccumulator::Result vsdnsOf(const LaneState& st, int k) {
 }
 
 // Lane k's map, as Mapper::snapshot() gives it: the rule's layers of its posterior, observed where
-// any of its readings wrote.
+// any of its readings wrote. Its layers are held as values: the set's measures read every cell
+// several times, and the map lives only for them.
 OccupancyMap mapOf(const LaneState& st, int k, const SweepSettings& settings,
-                   const UpdateRule& rule) {
-  Grid grid(settings.grid, rule.layout());
+                   const std::shared_ptr<const UpdateRule>& rule) {
+  Grid grid(settings.grid, rule->layout());
   BayesCell* const cells = grid.cells<BayesCell>();
   Footprint seen;
   for (std::size_t i = 0; i < st.posterior.cells(); ++i) {
@@ -433,7 +434,9 @@ OccupancyMap mapOf(const LaneState& st, int k, const SweepSettings& settings,
       seen.cells.push_back(CellEvidence(static_cast<std::uint32_t>(i), 0, 0, 0));
   }
   grid.markWritten(seen);
-  return occupancyMapOf(grid, rule, settings.model, settings.rule);
+  OccupancyMap m = occupancyMapOf(grid, rule, settings.model, settings.rule);
+  m.hold();
+  return m;
 }
 
 }  // namespace
@@ -525,7 +528,7 @@ bool evaluateSetsBatched(const SetEvaluationInput& in, const std::vector<Paramet
   std::mutex mutex;  // serialises `finished`
   auto work = [&](unsigned) {
     LaneState st;
-    std::unique_ptr<UpdateRule> rules[K];
+    std::shared_ptr<UpdateRule> rules[K];
     while (!stop.load(std::memory_order_relaxed)) {
       const std::size_t b = next.fetch_add(1, std::memory_order_relaxed);
       if (b >= batches) return;
@@ -565,7 +568,7 @@ bool evaluateSetsBatched(const SetEvaluationInput& in, const std::vector<Paramet
           if (p.has(name)) p.set(name, value);
         }
         rules[k]->configure(p);
-        firsts[k] = mapOf(st, k, settings, *rules[k]);
+        firsts[k] = mapOf(st, k, settings, rules[k]);
         if (!in.measures.twoRun)
           results[k] = measureSet(in, spread, &*firsts[k], nullptr);
         else
@@ -576,7 +579,7 @@ bool evaluateSetsBatched(const SetEvaluationInput& in, const std::vector<Paramet
         if (!mapBatch(beams2, settings.grid, *tables, batch, false, true, st, cancel, &stop))
           return;
         for (int k = 0; k < used; ++k) {
-          const OccupancyMap second = mapOf(st, k, settings, *rules[k]);
+          const OccupancyMap second = mapOf(st, k, settings, rules[k]);
           results[k] = measureSet(in, results[k].vsdns, &*firsts[k], &second);
         }
       }
