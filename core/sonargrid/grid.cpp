@@ -47,26 +47,20 @@ Grid Grid::sharedCells() const {
   g.spec_ = spec_;
   g.layout_ = layout_;
   g.planes_ = planes_;
+  g.readers_ = readers_;
+  g.lease_ = Lease(readers_);
   return g;
 }
 
-bool Grid::shared() const {
-  for (std::size_t p = 0; p < layout_.planes(); ++p)
-    if (planes_[p].use_count() > 1) return true;
-  return false;
-}
-
 void Grid::unshare() {
-  // use_count() may still count a sharer that another thread is letting go: then the plane is
-  // copied once more than it had to be, never written while shared (only this grid hands out
-  // shares, and not while it is being written).
+  if (!shared()) return;
+  // The readers keep the old planes; this grid writes copies.
   for (std::size_t p = 0; p < layout_.planes(); ++p) {
-    if (planes_[p].use_count() <= 1) continue;
-    const std::size_t bytes = cellCount() * layout_.bytes(p);
     Storage own = allocate(cellCount(), layout_.bytes(p));
-    std::memcpy(own.get(), planes_[p].get(), bytes);
+    std::memcpy(own.get(), planes_[p].get(), cellCount() * layout_.bytes(p));
     planes_[p] = std::move(own);
   }
+  ownPlanes();
 }
 
 Grid::Grid(const GridSpec& spec, const CellLayout& layout) : spec_(spec), layout_(layout) {
@@ -80,6 +74,7 @@ Grid::Grid(const GridSpec& spec, const CellLayout& layout) : spec_(spec), layout
   }
   for (std::size_t p = 0; p < layout_.planes(); ++p)
     planes_[p] = allocate(cellCount(), layout_.bytes(p));
+  ownPlanes();
   marks_.resize(cellCount());
   clear();
 }
@@ -105,15 +100,20 @@ void Grid::fillUnknown(std::size_t plane, std::byte* storage, std::size_t begin,
 }
 
 void Grid::clear() {
-  for (std::size_t p = 0; p < layout_.planes(); ++p) {
-    if (planes_[p].use_count() > 1) planes_[p] = allocate(cellCount(), layout_.bytes(p));
-    fillUnknown(p, planes_[p].get(), 0, cellCount());
+  if (shared()) {  // the readers keep the old planes
+    for (std::size_t p = 0; p < layout_.planes(); ++p)
+      planes_[p] = allocate(cellCount(), layout_.bytes(p));
+    ownPlanes();
   }
+  for (std::size_t p = 0; p < layout_.planes(); ++p)
+    fillUnknown(p, planes_[p].get(), 0, cellCount());
   std::fill(marks_.begin(), marks_.end(), std::uint8_t{0});
   allDirty_ = true;
 }
 
 void Grid::copyObserved(std::size_t begin, std::size_t end, std::uint8_t* out) const {
+  if (end > marks_.size())
+    throw std::logic_error("a grid of shared cells was asked which cells were observed");
   const std::uint8_t* const marks = marks_.data();
   for (std::size_t i = begin; i < end; ++i) out[i] = marks[i] & kObserved;
 }
@@ -200,6 +200,7 @@ bool Grid::growToCover(const Position& lo, const Position& hi) {
 
   spec_ = grown;
   planes_ = std::move(planes);
+  ownPlanes();  // any readers keep the old planes
   marks_ = std::move(marks);
   allDirty_ = true;
   return true;

@@ -17,6 +17,7 @@
 // again (unshare()), so what a snapshot reads never changes (docs/models.md, "Snapshots").
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -112,15 +113,17 @@ class Grid {
   Grid& operator=(const Grid&) = delete;
 
   // A grid of this one's spec, layout and cell values, sharing their storage, for reading them
-  // only: its cells<Cell>() const give the values as they are now, and it has no marks (observed()
-  // and the dirty rows are not its to answer). The values stay as they are for as long as the
-  // returned grid lives: this grid copies a shared plane before writing it (unshare()).
+  // only (from any thread): its cells<Cell>() const give the values as they are now, and it has no
+  // marks (observed() and the dirty rows are not its to answer). The values stay as they are for as
+  // long as the returned grid lives: this grid copies its planes before writing them while any
+  // such grid lives (unshare()).
   Grid sharedCells() const;
-  // Whether a grid from sharedCells() still holds any of the planes.
-  bool shared() const;
-  // Makes every plane this grid's own again, copying the ones a sharedCells() grid still holds.
+  // Whether a grid from sharedCells() still reads the planes. Its end (on any thread) happens
+  // before this returns false, so writes that follow do not race its reads.
+  bool shared() const { return readers_ && readers_->load(std::memory_order_acquire) > 0; }
+  // Makes the planes this grid's own again, copying them while a sharedCells() grid reads them.
   // Whoever writes cells calls it first (the mapper, before each batch of readings); the writing
-  // accessors below throw std::logic_error on a plane still shared.
+  // accessors below throw std::logic_error while the planes are shared.
   void unshare();
 
   const GridSpec& spec() const { return spec_; }
@@ -139,7 +142,7 @@ class Grid {
   template <class Cell>
   Cell* cells(std::size_t plane = 0) {
     checkType(layout_.holds<Cell>(plane));
-    checkWritable(plane);
+    checkWritable();
     return std::launder(reinterpret_cast<Cell*>(planes_[plane].get()));
   }
   template <class Cell>
@@ -153,7 +156,7 @@ class Grid {
   // byte.
   std::uint8_t* bytes(std::size_t plane = 0) {
     checkType(plane < layout_.planes() && layout_.bytes(plane) == 1);
-    checkWritable(plane);
+    checkWritable();
     return reinterpret_cast<std::uint8_t*>(planes_[plane].get());
   }
 
@@ -162,8 +165,8 @@ class Grid {
   // observed() of cells [begin, end) as 0 or 1 into out[begin, end) (OccupancyMap::observed).
   void copyObserved(std::size_t begin, std::size_t end, std::uint8_t* out) const;
 
-  // Every cell unknown and unobserved again (the spec stays); every row dirty. A shared plane is
-  // left to its sharers and replaced.
+  // Every cell unknown and unobserved again (the spec stays); every row dirty. Shared planes are
+  // left to their readers and replaced.
   void clear();
 
   // Marks the footprint's cells observed and written since the last snapshot (so their rows are
@@ -217,6 +220,36 @@ class Grid {
   };
   // Reference counted: sharedCells() hands the planes to a snapshot.
   using Storage = std::shared_ptr<std::byte[]>;
+  // A sharedCells() grid's hold on the planes: counts it among the readers while it lives, and its
+  // release (on the reader's thread) is what shared()'s acquire load sees. (Not the planes'
+  // reference count, whose load is relaxed and so orders nothing.)
+  class Lease {
+   public:
+    Lease() = default;
+    explicit Lease(std::shared_ptr<std::atomic<int>> readers) : readers_(std::move(readers)) {
+      readers_->fetch_add(1, std::memory_order_relaxed);  // by the writer's own thread
+    }
+    Lease(Lease&&) noexcept = default;
+    Lease& operator=(Lease&& o) noexcept {
+      if (this != &o) {
+        release();
+        readers_ = std::move(o.readers_);
+      }
+      return *this;
+    }
+    Lease(const Lease&) = delete;
+    Lease& operator=(const Lease&) = delete;
+    ~Lease() { release(); }
+
+   private:
+    void release() {
+      if (readers_) readers_->fetch_sub(1, std::memory_order_release);
+      readers_.reset();
+    }
+    std::shared_ptr<std::atomic<int>> readers_;
+  };
+  // New planes nobody reads yet (construction, clear() or unshare() of shared ones, growth).
+  void ownPlanes() { readers_ = std::make_shared<std::atomic<int>>(0); }
 
   // Cells a box lacks on each side.
   struct Need {
@@ -225,9 +258,9 @@ class Grid {
   Need need(const Position& lo, const Position& hi) const;
   static Storage allocate(std::size_t cells, std::size_t bytes);
   static void checkType(bool matches);
-  // Throws std::logic_error when a sharedCells() grid still holds the plane (unshare() first).
-  void checkWritable(std::size_t plane) const {
-    if (planes_[plane].use_count() > 1) throwShared();
+  // Throws std::logic_error while a sharedCells() grid reads the planes (unshare() first).
+  void checkWritable() const {
+    if (shared()) throwShared();
   }
   [[noreturn]] static void throwShared();
   // Writes plane `plane`'s unknown value into cells [begin, end) of `storage`.
@@ -240,6 +273,10 @@ class Grid {
   static constexpr std::uint8_t kObserved = 1, kWritten = 2;
   std::vector<std::uint8_t> marks_;
   bool allDirty_ = true;
+  // The count of sharedCells() grids reading planes_ (shared with them), and a sharedCells()
+  // grid's own place in that count.
+  std::shared_ptr<std::atomic<int>> readers_;
+  Lease lease_;
 };
 
 }  // namespace sg

@@ -136,11 +136,15 @@ void Mapper::beginWriting() {
 }
 
 void Mapper::integrate(const Scan& scan, double until) {
-  beginWriting();
   const Pose2D& robot =
       settings_.pose == PoseSource::Truth && scan.truth ? *scan.truth : scan.odometry;
+  bool writing = false;  // a scan with nothing up to `until` leaves shared cells shared
   for (const Reading& r : scan.readings) {
     if (r.time > until) continue;
+    if (!writing) {
+      beginWriting();
+      writing = true;
+    }
     scratch_.clear();
     model_->footprint(beamOf(robot, r), grid_.spec(), *tables_, scratch_);
     applyFootprint(scratch_);

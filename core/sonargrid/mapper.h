@@ -120,7 +120,8 @@ class Mapper {
   // call are computed again (every row after reset() or growth, and on the first call), so a live
   // map's refresh costs the rows that changed. Bit-identical to snapshot(). `rewritten`, when
   // given, receives the rows it rewrote as one band (every row between the first and the last).
-  // The reference is valid until the next call or the mapper's end.
+  // The reference is valid until the next call or the mapper's end, and its derived layers
+  // (OccupancyMap::derive) until the mapper next maps or resets: keep a copy, as a view does.
   const OccupancyMap& liveMap(RowBand* rewritten = nullptr);
 
   // The cells one reading writes, as the model gives them (for the beam view and tests).

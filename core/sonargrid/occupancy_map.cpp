@@ -37,10 +37,10 @@ bool OccupancyMap::derived() const {
 }
 
 void OccupancyMap::hold() {
-  probability = probability.values();
-  native = native.values();
-  evidence = evidence.values();
-  filled = filled.values();
+  if (probability.derived()) probability = probability.values();
+  if (native.derived()) native = native.values();
+  if (evidence.derived()) evidence = evidence.values();
+  if (filled.derived()) filled = filled.values();
 }
 
 std::size_t OccupancyMap::bytesPerCell() const {

@@ -103,10 +103,10 @@ class MapLayer {
   }
   void clear() { *this = std::vector<T>(); }
 
-  // Values in order, by index (as operator[] const reads them).
+  // Values in order, by index (as operator[] const reads them), each given by value.
   class const_iterator {
    public:
-    using iterator_category = std::forward_iterator_tag;
+    using iterator_category = std::input_iterator_tag;
     using value_type = T;
     using difference_type = std::ptrdiff_t;
     using pointer = void;
@@ -123,8 +123,8 @@ class MapLayer {
       ++i_;
       return before;
     }
-    bool operator==(const const_iterator& o) const { return i_ == o.i_; }
-    bool operator!=(const const_iterator& o) const { return i_ != o.i_; }
+    bool operator==(const const_iterator& o) const { return layer_ == o.layer_ && i_ == o.i_; }
+    bool operator!=(const const_iterator& o) const { return !(*this == o); }
 
    private:
     const MapLayer* layer_ = nullptr;

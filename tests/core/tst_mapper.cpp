@@ -15,6 +15,7 @@
 #include "sonargrid/concurrency.h"
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/mapper.h"
+#include "sonargrid/rules/rule_classes.h"
 #include "sonargrid/scan_source.h"
 
 using namespace sg;
@@ -674,8 +675,11 @@ void TstMapper::snapshotLayersAreTheRules() {
 void TstMapper::snapshotReadWhileMapping() {
   // One thread reads a snapshot's layers while another maps on, as the view and the metrics read
   // the map on show while the worker maps the next batch: the mapper copies the cells the snapshot
-  // shares before writing them, so the reader sees the same bits throughout, and under
-  // ThreadSanitizer (the sanitizer job, SONARGRID_THREADS=4) no write races with its reads.
+  // shares before writing them, so the reader sees the same bits throughout. Then a second reader
+  // lets its snapshot go while the mapper waits (with no ordering of its own, a relaxed flag) and
+  // the mapper writes the cells in place: the reader's end is ordered before those writes by the
+  // grid's count of readers. Under ThreadSanitizer (the sanitizer job, SONARGRID_THREADS=4) no
+  // write races with a read on either path.
   const Dataset d = corridor(300);
   MapperSettings s;
   s.rule = "bayes";
@@ -694,7 +698,7 @@ void TstMapper::snapshotReadWhileMapping() {
       reads.fetch_add(1);
     } while (!done.load());
   });
-  for (std::size_t k = 100; k < 300; ++k) {
+  for (std::size_t k = 100; k < 200; ++k) {
     m.integrate(d.scans[k]);
     if (k % 20 == 0) m.liveMap();
   }
@@ -703,6 +707,25 @@ void TstMapper::snapshotReadWhileMapping() {
   QVERIFY(same);
   QVERIFY(reads.load() >= 1);
   QVERIFY(!sameLayers(m.snapshot(), expected));  // the mapper went on
+
+  // The second reader: its snapshot is the grid's present cells, read and then let go.
+  auto lent = std::make_unique<OccupancyMap>(m.snapshot());
+  const Grid& grid = m.storage();
+  const BayesCell* const cells = grid.cells<BayesCell>();
+  QVERIFY(grid.shared());
+  std::atomic<bool> letGo{false};
+  double sum = 0.0;
+  std::thread borrower([&, owned = std::move(lent)]() mutable {
+    for (std::size_t i = 0; i < owned->probability.size(); ++i) sum += owned->probability[i];
+    owned.reset();
+    letGo.store(true, std::memory_order_relaxed);
+  });
+  while (!letGo.load(std::memory_order_relaxed)) std::this_thread::yield();
+  QVERIFY(!grid.shared());
+  for (std::size_t k = 200; k < 300; ++k) m.integrate(d.scans[k]);
+  QCOMPARE(grid.cells<BayesCell>(), cells);  // written in place, not copied
+  borrower.join();
+  QVERIFY(sum > 0.0);
 }
 
 void TstMapper::growthKeepsEveryValue_data() {
