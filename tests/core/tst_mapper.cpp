@@ -55,6 +55,14 @@ Dataset corridor(int scans = 60) {
   return d;
 }
 
+// The settings of a model × rule pair given by name (a data row's).
+MapperSettings settingsOf(const QString& model, const QString& rule) {
+  MapperSettings s;
+  s.model = model.toStdString();
+  s.rule = rule.toStdString();
+  return s;
+}
+
 std::vector<std::pair<std::string, std::string>> allPairs() {
   std::vector<std::pair<std::string, std::string>> out;
   for (const auto& m : sensorModelNames())
@@ -125,9 +133,7 @@ void TstMapper::batchEqualsIncremental() {
   QFETCH(QString, model);
   QFETCH(QString, rule);
   const Dataset d = corridor();
-  MapperSettings s;
-  s.model = model.toStdString();
-  s.rule = rule.toStdString();
+  MapperSettings s = settingsOf(model, rule);
   const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
   Mapper batch(d.ring, grid, s);
   batch.mapDataset(d);
@@ -227,9 +233,7 @@ void TstMapper::parallelBatchEqualsIncremental() {
   QFETCH(QString, rule);
   const Dataset& d = room();
   QVERIFY(d.readingCount() > 4096);
-  MapperSettings s;
-  s.model = model.toStdString();
-  s.rule = rule.toStdString();
+  MapperSettings s = settingsOf(model, rule);
   s.pose = PoseSource::Truth;
   const GridSpec grid = d.fittingGrid(PoseSource::Truth, 0.05);
   Mapper batch(d.ring, grid, s);
@@ -363,9 +367,7 @@ void TstMapper::stripesForEveryRuleKind() {
   QFETCH(unsigned, threads);
   const Dataset& d = room();
   const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
-  MapperSettings s;
-  s.model = model.toStdString();
-  s.rule = rule.toStdString();
+  MapperSettings s = settingsOf(model, rule);
   s.parameters = defaultParameters(s.model, s.rule);
   if (normalise >= 0) s.parameters.set("normalise", normalise);
   Mapper incremental(d.ring, grid, s);
@@ -559,9 +561,7 @@ void TstMapper::appendEqualsBatch() {
   QFETCH(QString, model);
   QFETCH(QString, rule);
   const Dataset d = corridor(600);
-  MapperSettings s;
-  s.model = model.toStdString();
-  s.rule = rule.toStdString();
+  MapperSettings s = settingsOf(model, rule);
   const std::span<const Scan> all(d.scans);
   Mapper live(d.ring, seedGrid(d), s);
   QVERIFY(live.append(all.first(300)));
@@ -601,9 +601,7 @@ void TstMapper::snapshotsStayAsTaken() {
   QFETCH(QString, model);
   QFETCH(QString, rule);
   const Dataset d = corridor(200);
-  MapperSettings s;
-  s.model = model.toStdString();
-  s.rule = rule.toStdString();
+  MapperSettings s = settingsOf(model, rule);
   Mapper m(d.ring, seedGrid(d), s);
   std::vector<OccupancyMap> taken, held;
   auto take = [&](const OccupancyMap& snapshot) {
@@ -745,9 +743,7 @@ void TstMapper::growthKeepsEveryValue() {
   QFETCH(QString, model);
   QFETCH(QString, rule);
   const Dataset d = corridor();
-  MapperSettings s;
-  s.model = model.toStdString();
-  s.rule = rule.toStdString();
+  MapperSettings s = settingsOf(model, rule);
   const GridSpec before = d.fittingGrid(PoseSource::Odometry, 0.05);
   Mapper m(d.ring, before, s);
   m.mapDataset(d);
@@ -808,9 +804,7 @@ void TstMapper::dirtyRowsAreTheRowsWritten() {
   QFETCH(QString, rule);
   QFETCH(unsigned, threads);
   const ScopedThreadCount policy(threads);
-  MapperSettings s;
-  s.model = model.toStdString();
-  s.rule = rule.toStdString();
+  MapperSettings s = settingsOf(model, rule);
   const Dataset& d = room();
   const std::span<const Scan> all(d.scans);
   Mapper m(d.ring, seedGrid(d), s);
