@@ -13,8 +13,8 @@
 // it reallocate a logarithmic number of times, not per scan.
 //
 // A snapshot shares the grid's cell values rather than copying them (sharedCells()): the planes are
-// reference counted, and the grid copies a plane that a snapshot still holds before it is written
-// again (unshare()), so what a snapshot reads never changes (docs/models.md, "Snapshots").
+// reference counted, and the grid copies them before writing again while a snapshot still reads
+// them (unshare()), so what a snapshot reads never changes (docs/models.md, "Snapshots").
 
 #include <array>
 #include <atomic>
