@@ -6,8 +6,8 @@
 //   - the full re-map of the 100 000-reading, 16-sonar, 40 m × 30 m, 5 cm workload
 //     (core/sonargrid/sim/benchmark_workload.h), median per model/rule;
 //   - the load time of a 1 000 000-reading .sglog;
-//   - the bytes each cell takes per rule: the rule's planes, the grid's observed/dirty mark and the
-//     snapshot layers a view reads.
+//   - the bytes each cell takes per rule, for a map at rest: the rule's planes, the grid's
+//     observed/dirty mark, the snapshot's own layers and the OpenGL view's uploaded levels.
 
 #include <unistd.h>
 #include <algorithm>
@@ -119,7 +119,9 @@ void printText(const Json& r, const std::string& officePath, const GridSpec& off
   }
   std::snprintf(line, sizeof line, "load of a %zu-reading .sglog: %.2f s\n", kLoadReadings,
                 r["load_1m_readings_s"].get<double>());
-  std::cout << line << "bytes per cell (rule planes, grid marks and the view's snapshot):\n";
+  std::cout << line
+            << "bytes per cell at rest (rule planes, grid marks, the snapshot's own layers, the "
+               "view's levels):\n";
   for (const auto& [rule, bytes] : r["bytes_per_cell"].items())
     std::cout << "  " << rule << ' ' << bytes.get<std::size_t>() << '\n';
 }
