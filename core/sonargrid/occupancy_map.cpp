@@ -55,9 +55,7 @@ std::size_t OccupancyMap::bytesPerCell() const {
 }
 
 std::size_t OccupancyMap::filledCount() const {
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < filled.size(); ++i) count += filled[i] == 1 ? 1 : 0;
-  return count;
+  return static_cast<std::size_t>(std::count(filled.begin(), filled.end(), std::uint8_t{1}));
 }
 
 std::vector<std::size_t> OccupancyMap::levelHistogram() const {

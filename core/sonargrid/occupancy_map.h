@@ -33,10 +33,8 @@ enum class DerivedLayer { Probability, Native, Evidence, Filled };
 class DerivedCells {
  public:
   virtual ~DerivedCells() = default;
-  virtual double probability(std::size_t cell) const = 0;
-  virtual double native(std::size_t cell) const = 0;
-  virtual double evidence(std::size_t cell) const = 0;
-  virtual std::uint8_t filled(std::size_t cell) const = 0;
+  // One cell's value of `layer` (Filled: 0 or 1).
+  virtual double value(DerivedLayer layer, std::size_t cell) const = 0;
   // Cells [begin, end) of `layer` into out[0, end − begin): doubles, or bytes for Filled.
   virtual void fill(DerivedLayer layer, std::size_t begin, std::size_t end, void* out) const = 0;
 };
@@ -67,7 +65,9 @@ class MapLayer {
   // Whether the values are read from a rule's cells rather than held.
   bool derived() const { return cells_ != nullptr; }
 
-  T operator[](std::size_t i) const { return cells_ ? read(i) : values_[i]; }
+  T operator[](std::size_t i) const {
+    return cells_ ? static_cast<T>(cells_->value(layer_, i)) : values_[i];
+  }
   T& operator[](std::size_t i) {
     hold();
     return values_[i];
@@ -152,19 +152,6 @@ class MapLayer {
   }
 
  private:
-  T read(std::size_t i) const {
-    switch (layer_) {
-      case DerivedLayer::Probability:
-        return static_cast<T>(cells_->probability(i));
-      case DerivedLayer::Native:
-        return static_cast<T>(cells_->native(i));
-      case DerivedLayer::Evidence:
-        return static_cast<T>(cells_->evidence(i));
-      case DerivedLayer::Filled:
-        break;
-    }
-    return static_cast<T>(cells_->filled(i));
-  }
   void hold() {
     if (!cells_) return;
     values_ = values();

@@ -121,11 +121,18 @@ class RuleCells final : public DerivedCells {
  public:
   RuleCells(std::shared_ptr<const UpdateRule> rule, Grid cells)
       : rule_(std::move(rule)), cells_(std::move(cells)) {}
-  double probability(std::size_t cell) const override { return rule_->occupancy(cells_, cell); }
-  double native(std::size_t cell) const override { return rule_->native(cells_, cell); }
-  double evidence(std::size_t cell) const override { return rule_->evidence(cells_, cell); }
-  std::uint8_t filled(std::size_t cell) const override {
-    return rule_->filled(cells_, cell) ? 1 : 0;
+  double value(DerivedLayer layer, std::size_t cell) const override {
+    switch (layer) {
+      case DerivedLayer::Probability:
+        return rule_->occupancy(cells_, cell);
+      case DerivedLayer::Native:
+        return rule_->native(cells_, cell);
+      case DerivedLayer::Evidence:
+        return rule_->evidence(cells_, cell);
+      case DerivedLayer::Filled:
+        break;
+    }
+    return rule_->filled(cells_, cell) ? 1.0 : 0.0;
   }
   void fill(DerivedLayer layer, std::size_t begin, std::size_t end, void* out) const override {
     rule_->writeLayer(cells_, layer, begin, end, out);
