@@ -7,6 +7,7 @@
 //   probability  P(occupied | this reading) as the model's likelihood, 0.5 = no information
 //                (paper 002 §3.1, P(s|Occupied)); rules that need one number read this.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -106,6 +107,25 @@ struct RowWindow {
   int phase = 0;
   bool contains(int row) const {
     return row >= begin && row < end && (period == 1 || (row / stripe) % period == phase);
+  }
+  // f(row) for every row of [lo, hi] (rows >= 0) that contains() accepts, in increasing order: a
+  // stripe at a time, without contains()'s division per row (at two threads the cone models'
+  // rasteriser spent a tenth of its time dividing row numbers).
+  template <class F>
+  void forEachRow(int lo, int hi, F&& f) const {
+    lo = std::max({lo, begin, 0});
+    hi = std::min(hi, end - 1);
+    if (lo > hi) return;
+    if (period == 1) {
+      for (int row = lo; row <= hi; ++row) f(row);
+      return;
+    }
+    int s = lo / stripe;  // the stripe of lo, then the first of ours from it
+    s += ((phase - s % period) % period + period) % period;
+    for (; s * stripe <= hi; s += period) {
+      const int last = std::min(hi, s * stripe + stripe - 1);
+      for (int row = std::max(lo, s * stripe); row <= last; ++row) f(row);
+    }
   }
 };
 

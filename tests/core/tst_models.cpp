@@ -367,6 +367,30 @@ void TstModels::footprintRowsAreItsRows() {
   const RowWindow w{0, 100, 8, 2, 1};
   QVERIFY(!w.contains(7) && w.contains(8) && w.contains(15) && !w.contains(16) && w.contains(24));
   QVERIFY(!w.contains(-1) && !w.contains(100));
+  // forEachRow() lists the rows contains() accepts, by hand: rows 5–26 of that window are 8–15
+  // and 24–26; of rows 95–120 only 95 (stripe 11, rows 88–95; stripe 12 is not ours, and row 100
+  // is past the window's end).
+  auto listed = [](const RowWindow& window, int lo, int hi) {
+    std::vector<int> rows;
+    window.forEachRow(lo, hi, [&](int row) { rows.push_back(row); });
+    return rows;
+  };
+  QCOMPARE(listed(w, 5, 26), (std::vector<int>{8, 9, 10, 11, 12, 13, 14, 15, 24, 25, 26}));
+  QVERIFY(listed(w, 16, 23).empty());
+  QCOMPARE(listed(w, 95, 120), std::vector<int>{95});
+  // And every window against contains(), over ranges that start and end anywhere in a stripe.
+  for (const RowWindow& window :
+       {RowWindow{}, RowWindow{95, 110}, RowWindow{0, 100, 8, 2, 0}, RowWindow{0, 100, 8, 2, 1},
+        RowWindow{3, 77, 3, 3, 2}, RowWindow{10, 60, 5, 4, 3}, RowWindow{0, 40, 1, 2, 1}}) {
+    for (int lo = -3; lo < 50; lo += 5) {
+      for (int hi = lo - 1; hi < 120; hi += 7) {
+        std::vector<int> want;
+        for (int row = std::max(lo, 0); row <= hi; ++row)
+          if (window.contains(row)) want.push_back(row);
+        QCOMPARE(listed(window, lo, hi), want);
+      }
+    }
+  }
 }
 
 void TstModels::reachBoundsTheFootprint() {

@@ -123,25 +123,25 @@ void forEachConeRow(const Pose2D& sensor, double reach, double halfAngle, const 
   thread_local std::vector<ConeSpan> spans;
   spans.clear();
   std::size_t bound = 0;
-  for (int dy = dy0; dy <= dy1; ++dy) {
-    if (!window.contains(iv + dy)) continue;
+  window.forEachRow(iv + dy0, iv + dy1, [&](int gridRow) {
+    const int dy = gridRow - iv;
     const double y = dy + 0.5 - ay;  // row of cell centres, relative to the apex
     const double disk = (R + kSlack) * (R + kSlack) - y * y;
-    if (disk < 0.0) continue;
+    if (disk < 0.0) return;
     const double half = std::sqrt(disk);  // once per row, not per cell
     double lo = -half, hi = half;
     // The wedge: left of the right edge, cross(d1, p) >= -slack, and right of the left edge,
     // cross(p, d2) >= -slack (a wedge narrower than 180° is the meet of the two half-planes).
     detail::clip(d1y, d1x * y + kSlack, lo, hi);
     detail::clip(-d2y, -d2x * y + kSlack, lo, hi);
-    if (!(lo <= hi)) continue;
+    if (!(lo <= hi)) return;
     // Cell dx has its centre at x = dx + 0.5 - ax; lo and hi are within ±(R + kSlack).
     const int dx0 = std::max({-r, detail::ceilToInt(lo - 0.5 + ax), -iu});
     const int dx1 = std::min({r, detail::floorToInt(hi - 0.5 + ax), grid.width - 1 - iu});
-    if (dx0 > dx1) continue;
+    if (dx0 > dx1) return;
     spans.push_back(ConeSpan{dy, dx0, dx1});
     bound += static_cast<std::size_t>(dx1 - dx0 + 1);
-  }
+  });
   reserve(bound);
 
   const BeamTables::Entry* t = tables.table(qx, qy);
