@@ -485,8 +485,10 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
       std::size_t applied = 0;
       std::size_t computed = 0, published = 0;
       auto applyNext = [&] {
-        FootprintTotals sum;
-        for (const Step& b : state) sum.occupied += b.partial[applied];
+        // Modulo 2^64, as occupiedFixedPoint() adds a whole footprint's cells (update_rule.h).
+        std::uint64_t total = 0;
+        for (const Step& b : state) total += static_cast<std::uint64_t>(b.partial[applied]);
+        const FootprintTotals sum{static_cast<std::int64_t>(total)};
         const Footprint& fp = ring[applied % kSlots];
         rule_->applyPart(fp, sum, grid_);
         markObserved(fp);

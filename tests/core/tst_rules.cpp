@@ -4,6 +4,7 @@
 
 #include <QtTest>
 #include <cmath>
+#include <limits>
 
 #include "sonargrid/rules/update_rule.h"
 
@@ -131,6 +132,29 @@ void TstRules::additionInParts() {
   for (std::size_t i = 0; i < 4; ++i) QCOMPARE(b->native(i), a->native(i));
   NEAR(a->native(1), 0.6);
   NEAR(a->native(2), -0.3);
+
+  // Evidence no model gives still has a defined total (the cast of NaN or of 1e30 to an integer is
+  // undefined, which UBSan reports): NaN counts 0, as the rule leaves its cell alone, and a value
+  // beyond ±2^22 counts ±2^22, i.e. ±2^62 units.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  QCOMPARE(occupiedFixedPoint(nan), std::int64_t{0});
+  QCOMPARE(occupiedFixedPoint(1e30f), std::int64_t{1} << 62);
+  QCOMPARE(occupiedFixedPoint(-inf), -(std::int64_t{1} << 62));
+  QCOMPARE(occupiedFixedPoint(0.5f), std::int64_t{1} << 39);
+  const Footprint odd = fp({occupied(0, 0.5), occupied(1, nan), occupied(2, 0.25)});
+  QCOMPARE(occupiedFixedPoint(odd), (std::int64_t{1} << 39) + (std::int64_t{1} << 38));
+  // Four cells of 2^62 units wrap to 0 modulo 2^64, whatever their order or cut, instead of
+  // overflowing.
+  QCOMPARE(occupiedFixedPoint(
+               fp({occupied(0, inf), occupied(1, inf), occupied(2, 1e30f), occupied(3, inf)})),
+           std::int64_t{0});
+  // And the rule leaves the NaN cell as it was while the others are scaled by 1 / 0.75.
+  auto c = rule("addition", {}, 3);
+  c->apply(odd);
+  NEAR(c->native(0), 0.5 / 0.75);
+  NEAR(c->native(1), 0.0);
+  NEAR(c->native(2), 0.25 / 0.75);
 }
 
 void TstRules::bayesPaper001() {

@@ -6,6 +6,7 @@
 // p(occupied), its own native value, the 16 levels and a "filled" flag, so views and metrics need
 // not know which rule ran.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -38,11 +39,23 @@ struct FootprintTotals {
   std::int64_t occupied = 0;
   double occupiedSum() const { return static_cast<double>(occupied) * 0x1p-40; }
 };
+// One cell's share, units of 2^-40 rounded toward zero. NaN counts 0, as the rules leave a cell of
+// NaN evidence as it was, and a value beyond ±2^22 (no model gives more than 1) counts as ±2^22,
+// so that the conversion is defined (a cast of NaN or of a value out of the integer's range is
+// not).
+inline std::int64_t occupiedFixedPoint(float occupied) {
+  const double x = static_cast<double>(occupied);
+  if (!(x == x)) return 0;
+  return static_cast<std::int64_t>(std::clamp(x, -0x1p22, 0x1p22) * 0x1p40);
+}
+// The sum of a footprint's shares. Added modulo 2^64 (unsigned), which no order of the parts can
+// change and which cannot overflow; a real footprint's sum (thousands of cells of at most 2^40)
+// never comes near the bound, so it is the exact sum.
 inline std::int64_t occupiedFixedPoint(const Footprint& footprint) {
-  std::int64_t sum = 0;
+  std::uint64_t sum = 0;
   for (const CellEvidence& c : footprint.cells)
-    sum += static_cast<std::int64_t>(static_cast<double>(c.occupied) * 0x1p40);
-  return sum;
+    sum += static_cast<std::uint64_t>(occupiedFixedPoint(c.occupied));
+  return static_cast<std::int64_t>(sum);
 }
 
 class UpdateRule {
