@@ -99,13 +99,30 @@ void Mapper::setObserver(FootprintObserver* observer) {
   if (observer_) observer_->reset(grid_.cellCount());
 }
 
-Beam Mapper::beamOf(const Pose2D& robot, const Reading& reading) const {
+namespace {
+
+// The robot's rotation matrix, as Pose2D::compose() computes it (Eigen's Rotation2D * v is
+// toRotationMatrix() * v), so that composeIn() gives compose()'s bits.
+Eigen::Matrix2d rotationOf(const Pose2D& robot) {
+  return Eigen::Rotation2Dd(robot.heading).toRotationMatrix();
+}
+Pose2D composeIn(const Pose2D& robot, const Eigen::Matrix2d& rotation, const Pose2D& local) {
+  Pose2D out;
+  out.position = robot.position + rotation * local.position;
+  out.heading = wrapAngle(robot.heading + local.heading);
+  return out;
+}
+
+}  // namespace
+
+Beam Mapper::beamOf(const Pose2D& robot, const Eigen::Matrix2d& rotation,
+                    const Reading& reading) const {
   if (reading.sonar >= ring_.size()) {
     throw MapperError("reading names sonar " + std::to_string(reading.sonar) +
                       " but the ring has " + std::to_string(ring_.size()));
   }
   Beam beam;
-  beam.sensor = robot.compose(ring_.sonars[reading.sonar].pose);
+  beam.sensor = composeIn(robot, rotation, ring_.sonars[reading.sonar].pose);
   // A range at or beyond the transducer's maximum is no echo (notes, Conventions).
   beam.range = reading.range < ring_.maxRange ? reading.range : Reading::kNoEcho;
   beam.maxRange = ring_.maxRange;
@@ -114,7 +131,7 @@ Beam Mapper::beamOf(const Pose2D& robot, const Reading& reading) const {
 
 Footprint Mapper::footprintOf(const Pose2D& robot, const Reading& reading) const {
   Footprint fp;
-  model_->footprint(beamOf(robot, reading), grid_.spec(), *tables_, fp);
+  model_->footprint(beamOf(robot, rotationOf(robot), reading), grid_.spec(), *tables_, fp);
   return fp;
 }
 
@@ -139,6 +156,7 @@ void Mapper::integrate(const Scan& scan, double until) {
   const Pose2D& robot =
       settings_.pose == PoseSource::Truth && scan.truth ? *scan.truth : scan.odometry;
   bool writing = false;  // a scan with nothing up to `until` leaves shared cells shared
+  const Eigen::Matrix2d rotation = rotationOf(robot);
   for (const Reading& r : scan.readings) {
     if (r.time > until) continue;
     if (!writing) {
@@ -146,7 +164,7 @@ void Mapper::integrate(const Scan& scan, double until) {
       writing = true;
     }
     scratch_.clear();
-    model_->footprint(beamOf(robot, r), grid_.spec(), *tables_, scratch_);
+    model_->footprint(beamOf(robot, rotation, r), grid_.spec(), *tables_, scratch_);
     applyFootprint(scratch_);
   }
 }
@@ -174,9 +192,10 @@ bool Mapper::mapDataset(const Dataset& dataset, double until, const std::atomic<
     const std::size_t end = scans.size() * (part + 1) / parts;
     for (std::size_t k = begin; k < end; ++k) {
       const Pose2D& robot = dataset.pose(scans[k], settings_.pose);
+      const Eigen::Matrix2d rotation = rotationOf(robot);
       Beam* out = beams.data() + first[k];
       for (const Reading& r : scans[k].readings) {
-        if (r.time <= until) *out++ = beamOf(robot, r);
+        if (r.time <= until) *out++ = beamOf(robot, rotation, r);
       }
     }
   });
@@ -598,8 +617,9 @@ bool Mapper::append(std::span<const Scan> scans, double until, const std::atomic
       throw MapperError("the scan at t = " + std::to_string(scan.time) +
                         " s has a pose that is not a finite number");
     }
+    const Eigen::Matrix2d rotation = rotationOf(robot);
     for (const Reading& r : scan.readings)
-      if (r.time <= until) beams.push_back(beamOf(robot, r));
+      if (r.time <= until) beams.push_back(beamOf(robot, rotation, r));
   }
   if (beams.empty()) return true;
   // The model writes no further than its reach from the sensor (cell centres within it); two cells

@@ -128,7 +128,9 @@ class Mapper {
   Footprint footprintOf(const Pose2D& robot, const Reading& reading) const;
 
  private:
-  Beam beamOf(const Pose2D& robot, const Reading& reading) const;
+  // `rotation` is the robot's, Eigen::Rotation2Dd(robot.heading).toRotationMatrix(): computed once
+  // a scan for its readings, where robot.compose() computes its sine and cosine per reading.
+  Beam beamOf(const Pose2D& robot, const Eigen::Matrix2d& rotation, const Reading& reading) const;
   void applyFootprint(const Footprint& footprint);
   // The rule's applyRuns() (its deferred cells to `deferred`), and the runs' cells marked observed.
   // Several threads may apply runs in disjoint rows at once.
