@@ -131,10 +131,12 @@ template <class Cell, class Lanes, class One>
     double v[W];
     for (int j = 0; j < W; ++j) std::memcpy(&v[j], plane + c[j], sizeof(double));
     const Doubles m = update(Doubles{v[0], v[1], v[2], v[3]});
-    for (int j = 0; j < W; ++j) {
-      const double x = m[j];
-      std::memcpy(plane + c[j], &x, sizeof(double));
-    }
+    // Written out: a loop over j went through the stack (a 32-byte store, four 8-byte loads).
+    const double m0 = m[0], m1 = m[1], m2 = m[2], m3 = m[3];
+    std::memcpy(plane + c[0], &m0, sizeof(double));
+    std::memcpy(plane + c[1], &m1, sizeof(double));
+    std::memcpy(plane + c[2], &m2, sizeof(double));
+    std::memcpy(plane + c[3], &m3, sizeof(double));
   }
   for (; c != end; ++c) one(plane[*c]);
 }
