@@ -84,6 +84,19 @@ using Mask = decltype(Doubles{} == Doubles{});
   return v < lo ? splat(lo) : (hi < v ? splat(hi) : v);
 }
 
+// `Bytes` bytes from src to dst in moves of W doubles where they fit: a run's last cells are copied
+// to `last` and the lanes then load them with one such move, which the CPU forwards from a store
+// of the same size (memcpy stored them as two halves, and the wide load after them stalled).
+template <std::size_t Bytes>
+[[gnu::always_inline]] inline void copyLanes(void* dst, const void* src) {
+  if constexpr (Bytes % sizeof(Doubles) == 0) {
+    for (std::size_t i = 0; i < Bytes; i += sizeof(Doubles))
+      store(static_cast<char*>(dst) + i, load(static_cast<const char*>(src) + i));
+  } else {
+    std::memcpy(dst, src, Bytes);
+  }
+}
+
 // group(empty, occupied, probability, cells) for every W consecutive cells of every run: W values
 // from each array, W cells to update in place. No lane touches a cell past its run (another
 // row's, perhaps another thread's): a run's last count mod W cells are updated as part of its last
@@ -109,12 +122,12 @@ template <class Cell, class Group>
     }
     const int tail = n % W == 0 ? -1 : n - W;  // the first of the last W cells, when apart
     if (tail >= 0) {
-      std::memcpy(static_cast<void*>(last), cells + tail, sizeof last);
+      copyLanes<sizeof last>(last, cells + tail);
       group(empty + v + tail, occupied + v + tail, probability + v + tail, last);
     }
     for (int k = 0; k + W <= n; k += W)
       group(empty + v + k, occupied + v + k, probability + v + k, cells + k);
-    if (tail >= 0) std::memcpy(static_cast<void*>(cells + tail), last, sizeof last);
+    if (tail >= 0) copyLanes<sizeof last>(cells + tail, last);
   }
 }
 
