@@ -110,21 +110,27 @@ struct RowWindow {
   }
   // f(row) for every row of [lo, hi] (rows >= 0) that contains() accepts, in increasing order: a
   // stripe at a time, without contains()'s division per row (at two threads the cone models'
-  // rasteriser spent a tenth of its time dividing row numbers).
+  // rasteriser spent a tenth of its time dividing row numbers). f is called from one place, so
+  // that the compiler inlines it.
   template <class F>
   void forEachRow(int lo, int hi, F&& f) const {
     lo = std::max({lo, begin, 0});
     hi = std::min(hi, end - 1);
     if (lo > hi) return;
-    if (period == 1) {
-      for (int row = lo; row <= hi; ++row) f(row);
-      return;
+    int s = 0;  // the stripe being listed (period > 1)
+    int row = lo, last = hi;
+    if (period > 1) {
+      s = lo / stripe;  // the stripe of lo, then the first of ours from it
+      s += ((phase - s % period) % period + period) % period;
+      row = std::max(lo, s * stripe);
+      last = std::min(hi, s * stripe + stripe - 1);
     }
-    int s = lo / stripe;  // the stripe of lo, then the first of ours from it
-    s += ((phase - s % period) % period + period) % period;
-    for (; s * stripe <= hi; s += period) {
-      const int last = std::min(hi, s * stripe + stripe - 1);
-      for (int row = std::max(lo, s * stripe); row <= last; ++row) f(row);
+    while (row <= hi) {
+      for (; row <= last; ++row) f(row);
+      if (period == 1) break;
+      s += period;
+      row = s * stripe;
+      last = std::min(hi, row + stripe - 1);
     }
   }
 };

@@ -18,6 +18,14 @@
 #include "sonargrid/grid_spec.h"
 #include "sonargrid/pose.h"
 
+// The span of each row is computed inside forEachRow's loop: inlined (GCC left it out of line in
+// one model's file, a call per row).
+#if defined(__GNUC__) && !defined(__clang__)
+#define SG_ROW_INLINE __attribute__((always_inline))
+#else
+#define SG_ROW_INLINE
+#endif
+
 namespace sg {
 
 namespace detail {
@@ -123,7 +131,7 @@ void forEachConeRow(const Pose2D& sensor, double reach, double halfAngle, const 
   thread_local std::vector<ConeSpan> spans;
   spans.clear();
   std::size_t bound = 0;
-  window.forEachRow(iv + dy0, iv + dy1, [&](int gridRow) {
+  window.forEachRow(iv + dy0, iv + dy1, [&](int gridRow) SG_ROW_INLINE {
     const int dy = gridRow - iv;
     const double y = dy + 0.5 - ay;  // row of cell centres, relative to the apex
     const double disk = (R + kSlack) * (R + kSlack) - y * y;
