@@ -99,22 +99,6 @@ void Mapper::setObserver(FootprintObserver* observer) {
   if (observer_) observer_->reset(grid_.cellCount());
 }
 
-namespace {
-
-// The robot's rotation matrix, as Pose2D::compose() computes it (Eigen's Rotation2D * v is
-// toRotationMatrix() * v), so that composeIn() gives compose()'s bits.
-Eigen::Matrix2d rotationOf(const Pose2D& robot) {
-  return Eigen::Rotation2Dd(robot.heading).toRotationMatrix();
-}
-Pose2D composeIn(const Pose2D& robot, const Eigen::Matrix2d& rotation, const Pose2D& local) {
-  Pose2D out;
-  out.position = robot.position + rotation * local.position;
-  out.heading = wrapAngle(robot.heading + local.heading);
-  return out;
-}
-
-}  // namespace
-
 Beam Mapper::beamOf(const Pose2D& robot, const Eigen::Matrix2d& rotation,
                     const Reading& reading) const {
   if (reading.sonar >= ring_.size()) {
@@ -122,7 +106,7 @@ Beam Mapper::beamOf(const Pose2D& robot, const Eigen::Matrix2d& rotation,
                       " but the ring has " + std::to_string(ring_.size()));
   }
   Beam beam;
-  beam.sensor = composeIn(robot, rotation, ring_.sonars[reading.sonar].pose);
+  beam.sensor = robot.compose(ring_.sonars[reading.sonar].pose, rotation);
   // A range at or beyond the transducer's maximum is no echo (notes, Conventions).
   beam.range = reading.range < ring_.maxRange ? reading.range : Reading::kNoEcho;
   beam.maxRange = ring_.maxRange;
@@ -131,7 +115,7 @@ Beam Mapper::beamOf(const Pose2D& robot, const Eigen::Matrix2d& rotation,
 
 Footprint Mapper::footprintOf(const Pose2D& robot, const Reading& reading) const {
   Footprint fp;
-  model_->footprint(beamOf(robot, rotationOf(robot), reading), grid_.spec(), *tables_, fp);
+  model_->footprint(beamOf(robot, robot.rotation(), reading), grid_.spec(), *tables_, fp);
   return fp;
 }
 
@@ -156,7 +140,7 @@ void Mapper::integrate(const Scan& scan, double until) {
   const Pose2D& robot =
       settings_.pose == PoseSource::Truth && scan.truth ? *scan.truth : scan.odometry;
   bool writing = false;  // a scan with nothing up to `until` leaves shared cells shared
-  const Eigen::Matrix2d rotation = rotationOf(robot);
+  const Eigen::Matrix2d rotation = robot.rotation();
   for (const Reading& r : scan.readings) {
     if (r.time > until) continue;
     if (!writing) {
@@ -192,7 +176,7 @@ bool Mapper::mapDataset(const Dataset& dataset, double until, const std::atomic<
     const std::size_t end = scans.size() * (part + 1) / parts;
     for (std::size_t k = begin; k < end; ++k) {
       const Pose2D& robot = dataset.pose(scans[k], settings_.pose);
-      const Eigen::Matrix2d rotation = rotationOf(robot);
+      const Eigen::Matrix2d rotation = robot.rotation();
       Beam* out = beams.data() + first[k];
       for (const Reading& r : scans[k].readings) {
         if (r.time <= until) *out++ = beamOf(robot, rotation, r);
@@ -504,10 +488,8 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
       std::size_t applied = 0;
       std::size_t computed = 0, published = 0;
       auto applyNext = [&] {
-        // Modulo 2^64, as occupiedFixedPoint() adds a whole footprint's cells (update_rule.h).
-        std::uint64_t total = 0;
-        for (const Step& b : state) total += static_cast<std::uint64_t>(b.partial[applied]);
-        const FootprintTotals sum{static_cast<std::int64_t>(total)};
+        FootprintTotals sum;
+        for (const Step& b : state) sum.add(b.partial[applied]);
         const Footprint& fp = ring[applied % kSlots];
         rule_->applyPart(fp, sum, grid_);
         markObserved(fp);
@@ -617,7 +599,7 @@ bool Mapper::append(std::span<const Scan> scans, double until, const std::atomic
       throw MapperError("the scan at t = " + std::to_string(scan.time) +
                         " s has a pose that is not a finite number");
     }
-    const Eigen::Matrix2d rotation = rotationOf(robot);
+    const Eigen::Matrix2d rotation = robot.rotation();
     for (const Reading& r : scan.readings)
       if (r.time <= until) beams.push_back(beamOf(robot, rotation, r));
   }

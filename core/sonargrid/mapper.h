@@ -128,8 +128,7 @@ class Mapper {
   Footprint footprintOf(const Pose2D& robot, const Reading& reading) const;
 
  private:
-  // `rotation` is the robot's, Eigen::Rotation2Dd(robot.heading).toRotationMatrix(): computed once
-  // a scan for its readings, where robot.compose() computes its sine and cosine per reading.
+  // `rotation` is robot.rotation(), computed once a scan for its readings.
   Beam beamOf(const Pose2D& robot, const Eigen::Matrix2d& rotation, const Reading& reading) const;
   void applyFootprint(const Footprint& footprint);
   // The rule's applyRuns() (its deferred cells to `deferred`), and the runs' cells marked observed.

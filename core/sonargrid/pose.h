@@ -38,13 +38,17 @@ struct Pose2D {
   double y() const { return position.y(); }
 
   // This pose composed with a pose expressed in its own frame (e.g. robot pose * sonar mounting).
-  Pose2D compose(const Pose2D& local) const {
-    const Eigen::Rotation2Dd r(heading);
+  Pose2D compose(const Pose2D& local) const { return compose(local, rotation()); }
+  // The same, given rotation() computed once for many local poses (a robot's sonars): a sine and
+  // a cosine for them all.
+  Pose2D compose(const Pose2D& local, const Eigen::Matrix2d& rotation) const {
     Pose2D out;
-    out.position = position + r * local.position;
+    out.position = position + rotation * local.position;
     out.heading = wrapAngle(heading + local.heading);
     return out;
   }
+  // The heading's rotation matrix (Eigen's Rotation2D * v is toRotationMatrix() * v).
+  Eigen::Matrix2d rotation() const { return Eigen::Rotation2Dd(heading).toRotationMatrix(); }
 
   // A point given in this pose's frame, expressed in the world frame.
   Position transform(const Position& local) const {

@@ -38,6 +38,12 @@ struct RuleInfo {
 struct FootprintTotals {
   std::int64_t occupied = 0;
   double occupiedSum() const { return static_cast<double>(occupied) * 0x1p-40; }
+  // Adds a share (a cell's, or a part's sum) modulo 2^64: no order of the shares changes the sum,
+  // and it cannot overflow.
+  void add(std::int64_t share) {
+    occupied = static_cast<std::int64_t>(static_cast<std::uint64_t>(occupied) +
+                                         static_cast<std::uint64_t>(share));
+  }
 };
 // One cell's share, units of 2^-40 rounded toward zero. NaN counts 0, as the rules leave a cell of
 // NaN evidence as it was, and a value beyond ±2^22 (no model gives more than 1) counts as ±2^22,
@@ -48,14 +54,12 @@ inline std::int64_t occupiedFixedPoint(float occupied) {
   if (!(x == x)) return 0;
   return static_cast<std::int64_t>(std::clamp(x, -0x1p22, 0x1p22) * 0x1p40);
 }
-// The sum of a footprint's shares. Added modulo 2^64 (unsigned), which no order of the parts can
-// change and which cannot overflow; a real footprint's sum (thousands of cells of at most 2^40)
-// never comes near the bound, so it is the exact sum.
+// The sum of a footprint's shares (FootprintTotals::add); a real footprint's sum (thousands of
+// cells of at most 2^40) never comes near 2^63, so it is the exact sum.
 inline std::int64_t occupiedFixedPoint(const Footprint& footprint) {
-  std::uint64_t sum = 0;
-  for (const CellEvidence& c : footprint.cells)
-    sum += static_cast<std::uint64_t>(occupiedFixedPoint(c.occupied));
-  return static_cast<std::int64_t>(sum);
+  FootprintTotals sum;
+  for (const CellEvidence& c : footprint.cells) sum.add(occupiedFixedPoint(c.occupied));
+  return sum.occupied;
 }
 
 class UpdateRule {
