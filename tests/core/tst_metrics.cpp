@@ -306,9 +306,11 @@ void TstMetrics::ruleEvidence() {
   himm.configure(sg::defaultParameters("himm", "himm"));
   // HIMM: CV / 15, so 15 × evidence is the CV: CV 9 → 0.6.
   QCOMPARE(himm.evidenceOf(sg::HimmCell{9}), 9.0 / 15.0);
-  // Dempster–Shafer: m(occ); m(occ) 0.7, m(emp) 0.1 → 0.7 (its p is 0.8, 2p − 1 would say 0.6).
+  // Dempster–Shafer: m(occ); m(occ) 0.75, m(emp) 0.125, m(unk) 0.125 → 0.75 (its p is 0.8125,
+  // 2p − 1 would say 0.625). All three are exact in binary, so the m(occ) the cell leaves out comes
+  // back exactly as 1 − 0.125 − 0.125.
   sg::DempsterShaferRule ds;
-  QCOMPARE(ds.evidenceOf(sg::DempsterShaferCell{0.7, 0.1}), 0.7);
+  QCOMPARE(ds.evidenceOf(sg::DempsterShaferCell::of({0.75f, 0.125f, 0.125f})), 0.75);
 }
 
 void TstMetrics::snapshotCarriesEvidence() {

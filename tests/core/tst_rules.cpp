@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "sonargrid/rules/rule_classes.h"
 #include "sonargrid/rules/update_rule.h"
 
 using namespace sg;
@@ -75,6 +76,8 @@ class TstRules : public QObject {
   void logOdds();
   void himmClamping();
   void dempsterShafer();
+  void dempsterShaferCells();
+  void dempsterShaferKeepsSmallMasses();
   void unseenCellsAreUnknown();
 };
 
@@ -252,6 +255,61 @@ void TstRules::dempsterShafer() {
   r->apply(fp({occupied(1, 1.0)}));
   r->apply(fp({empty(1, 1.0)}));
   NEAR(r->occupancy(1), 1.0);
+}
+
+void TstRules::dempsterShaferCells() {
+  // A cell keeps its two smaller masses as floats and leaves out the largest, the sign bit saying
+  // which (DempsterShaferCell, rule_classes.h). Every mass below is exact in binary, so the one
+  // left out comes back exactly as one minus the other two.
+  struct Case {
+    float occ, emp, unk, a, b;
+  };
+  const Case cases[] = {
+      {0.0f, 0.0f, 1.0f, 0.0f, 0.0f},           // a cell nobody has seen: m(unk) left out
+      {0.25f, 0.125f, 0.625f, 0.25f, 0.125f},   // m(unk) the largest
+      {0.625f, 0.125f, 0.25f, -0.25f, 0.125f},  // m(occ) the largest: a = −m(unk)
+      {0.125f, 0.625f, 0.25f, 0.125f, -0.25f},  // m(emp) the largest: b = −m(unk)
+      {0.375f, 0.25f, 0.375f, 0.375f, 0.25f},   // m(unk) ties m(occ): m(unk) left out
+      {0.5f, 0.5f, 0.0f, -0.0f, 0.5f},          // m(occ) ties m(emp): m(occ) left out, a = −0
+      {0.0f, 1.0f, 0.0f, 0.0f, -0.0f},          // certainly empty: b = −0
+  };
+  for (const Case& c : cases) {
+    const DempsterShaferCell cell = DempsterShaferCell::of({c.occ, c.emp, c.unk});
+    QCOMPARE(cell.a, c.a);
+    QCOMPARE(cell.b, c.b);
+    QCOMPARE(std::signbit(cell.a), std::signbit(c.a));
+    QCOMPARE(std::signbit(cell.b), std::signbit(c.b));
+    const DempsterShaferMasses m = cell.masses();
+    QCOMPARE(m.occ, c.occ);
+    QCOMPARE(m.emp, c.emp);
+    QCOMPARE(m.unk, c.unk);
+  }
+  // A kept mass of −0 does not set the sign bit that tags a left-out one.
+  const DempsterShaferCell zero = DempsterShaferCell::of({-0.0f, 0.25f, 0.75f});
+  QVERIFY(!std::signbit(zero.a) && !std::signbit(zero.b));
+}
+
+void TstRules::dempsterShaferKeepsSmallMasses() {
+  // 30 occupied readings of 0.75, then empty readings of 0.9f, on one cell. Exact arithmetic
+  // (fractions, with the float 0.9f the footprint carries): after the 30 m(unk) = 0.25^30, about
+  // 8.7e-19, and m(emp) = 0; the empty readings then make m(emp)/m(occ) 0.087 after the 17th,
+  // 0.867 after the 18th and 8.67 after the 19th, where m(occ) − m(emp) = −0.79325 and the
+  // pignistic p = 0.10337. The cell keeps m(unk) as a float, so it follows: two doubles for m(occ)
+  // and m(emp) rounded m(occ) to exactly 1 (8.7e-19 < 2^-53), and Dempster's rule never moves a
+  // mass of 1.
+  auto r = rule("dempster-shafer");
+  for (int k = 0; k < 30; ++k) r->apply(fp({occupied(0, 0.75)}));
+  QVERIFY(r->filled(0));
+  NEAR(r->occupancy(0), 1.0);
+  for (int k = 1; k <= 18; ++k) {
+    r->apply(fp({empty(0, 0.9)}));
+    QVERIFY2(r->filled(0), qPrintable(QString("empty reading %1").arg(k)));
+  }
+  NEAR(r->native(0), 0.0710319);
+  r->apply(fp({empty(0, 0.9)}));
+  QVERIFY(!r->filled(0));
+  NEAR(r->native(0), -0.7932513);
+  NEAR(r->occupancy(0), 0.1033744);
 }
 
 void TstRules::unseenCellsAreUnknown() {

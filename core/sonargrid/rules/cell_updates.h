@@ -74,50 +74,56 @@ inline constexpr double kProbabilityFloor = 1e-6;
   o = std::clamp(o * (p / (1.0 - p)) * invPrior, minOdds, maxOdds);
 }
 
-// Dempster's rule of combination (DempsterShaferRule).
+// Dempster's rule of combination (DempsterShaferRule), in single precision: the cell's masses, the
+// rule, and the new masses stored as DempsterShaferCell::of() keeps them.
 [[gnu::always_inline]] inline void dempsterShafer(float occupied, float empty,
-                                                  DempsterShaferCell& m) {
-  double o = std::clamp(static_cast<double>(occupied), 0.0, 1.0);
-  double e = std::clamp(static_cast<double>(empty), 0.0, 1.0);
-  double& mo = m.occ;
-  double& me = m.emp;
+                                                  DempsterShaferCell& cell) {
+  float o = std::clamp(occupied, 0.0f, 1.0f);
+  float e = std::clamp(empty, 0.0f, 1.0f);
+  const DempsterShaferMasses m = cell.masses();
   // Every model gives a cell one kind of evidence; Dempster's rule then shortens to
-  //   m(occ) = (m(occ) + m(unk) o) / (1 − m(emp) o),  m(emp) = m(emp)(1 − o) / (1 − m(emp) o)
-  // (and symmetrically for e): the general form below with e = 0, in fewer operations.
-  if (e == 0.0) {
-    const double denominator = 1.0 - me * o;
-    if (denominator <= 0.0) return;  // total conflict, see below
-    const double inv = 1.0 / denominator;
-    const double mu = 1.0 - mo - me;
-    mo = (mo + mu * o) * inv;
-    me = me * (1.0 - o) * inv;
+  //   m(occ) = (m(occ) + m(unk) o) / (1 − m(emp) o),  m(emp) = m(emp) s,  m(unk) = m(unk) s,
+  //   s = (1 − o) / (1 − m(emp) o)
+  // (and symmetrically for e): the general form below with e = 0, in fewer operations. When the
+  // mass o adds to is the one the cell leaves out, the largest, it stays the largest and stays left
+  // out: the cell's two floats are scaled by s.
+  if (e == 0.0f) {
+    const float denominator = 1.0f - m.emp * o;
+    if (denominator <= 0.0f) return;  // total conflict, see below
+    const float inv = 1.0f / denominator;
+    const float s = (1.0f - o) * inv;
+    if (std::signbit(cell.a)) {
+      cell = {cell.a * s, cell.b * s};
+      return;
+    }
+    cell = DempsterShaferCell::of({(m.occ + m.unk * o) * inv, m.emp * s, m.unk * s});
     return;
   }
-  if (o == 0.0) {
-    const double denominator = 1.0 - mo * e;
-    if (denominator <= 0.0) return;
-    const double inv = 1.0 / denominator;
-    const double mu = 1.0 - mo - me;
-    me = (me + mu * e) * inv;
-    mo = mo * (1.0 - e) * inv;
+  if (o == 0.0f) {
+    const float denominator = 1.0f - m.occ * e;
+    if (denominator <= 0.0f) return;
+    const float inv = 1.0f / denominator;
+    const float s = (1.0f - e) * inv;
+    if (std::signbit(cell.b)) {
+      cell = {cell.a * s, cell.b * s};
+      return;
+    }
+    cell = DempsterShaferCell::of({m.occ * s, (m.emp + m.unk * e) * inv, m.unk * s});
     return;
   }
-  if (o + e > 1.0) {  // masses must sum to at most one
-    const double s = o + e;
-    o /= s;
-    e /= s;
+  if (o + e > 1.0f) {  // masses must sum to at most one
+    const float sum = o + e;
+    o /= sum;
+    e /= sum;
   }
-  const double u = 1.0 - o - e;
-  const double mu = 1.0 - mo - me;
-  const double conflict = mo * e + me * o;
+  const float u = 1.0f - o - e;
+  const float conflict = m.occ * e + m.emp * o;
   // Total conflict (a certain cell meets certain opposite evidence) leaves Dempster's rule
   // undefined; the cell keeps its masses.
-  if (conflict >= 1.0) return;
-  const double norm = 1.0 / (1.0 - conflict);
-  const double newOcc = (mo * o + mo * u + mu * o) * norm;
-  const double newEmp = (me * e + me * u + mu * e) * norm;
-  mo = newOcc;
-  me = newEmp;
+  if (conflict >= 1.0f) return;
+  const float norm = 1.0f / (1.0f - conflict);
+  cell = DempsterShaferCell::of({(m.occ * o + m.occ * u + m.unk * o) * norm,
+                                 (m.emp * e + m.emp * u + m.unk * e) * norm, m.unk * u * norm});
 }
 
 }  // namespace sg::cellrule

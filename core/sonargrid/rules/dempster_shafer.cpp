@@ -45,8 +45,18 @@ void DempsterShaferRule::applyRuns(const EvidenceRuns& runs, Grid& grid,
 }
 
 double DempsterShaferRule::occupancyOf(const DempsterShaferCell& c) const {
-  const double mu = 1.0 - c.occ - c.emp;
-  return c.occ + 0.5 * mu;
+  const auto m = c.masses<double>();
+  return m.occ + 0.5 * m.unk;
+}
+
+double DempsterShaferRule::nativeOf(const DempsterShaferCell& c) const {
+  const auto m = c.masses<double>();
+  return m.occ - m.emp;
+}
+
+bool DempsterShaferRule::filledOf(const DempsterShaferCell& c) const {
+  const auto m = c.masses<double>();
+  return m.occ > m.emp;
 }
 
 }  // namespace sg

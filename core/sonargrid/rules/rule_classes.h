@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 #include "sonargrid/rules/update_rule.h"
@@ -151,25 +152,63 @@ class HimmRule final : public RuleOnCells<HimmRule, HimmCell> {
   int increment_ = 3, decrement_ = 1, cvMax_ = 15;
 };
 
-// Dempster–Shafer evidence combination over {occupied, empty} (Murphy 2000 §11.4).
+// Dempster–Shafer evidence combination over {occupied, empty} (Murphy 2000 §11.4), in single
+// precision (docs/models.md, "Single-precision cells").
+template <class T>
+struct DempsterShaferMassesOf {
+  T occ, emp, unk;
+};
+using DempsterShaferMasses = DempsterShaferMassesOf<float>;
+// A cell's three masses, which sum to one, in 8 bytes: the two smaller ones as floats, the largest
+// left out and recomputed as one minus the other two. A float keeps a small mass to 24 bits however
+// small it gets, down to 10⁻³⁸, so no mass is ever stored as a value near 1, which rounds to
+// exactly 1 for good.
 struct DempsterShaferCell {
-  double occ, emp;  // m(unknown) = 1 − both; side by side, as every update reads both
+  // `a` is m(occ), or −m(unk) when m(occ) is the one left out; `b` is m(emp), or −m(unk) when
+  // m(emp) is. The sign bit says which: neither set, m(unk) is left out (a cell nobody has seen: 0,
+  // 0). Side by side, as every update reads both.
+  float a, b;
+
+  // In float, as the rule computes; in double for what the map shows, so that the mass left out
+  // keeps the small ones' digits (1 − 10⁻¹⁰ is a double, not a float) and near-certain cells keep
+  // their order.
+  template <class T = float>
+  DempsterShaferMassesOf<T> masses() const {
+    if (std::signbit(a)) {
+      const T unk = -static_cast<T>(a), emp = b;
+      return {T(1) - unk - emp, emp, unk};
+    }
+    if (std::signbit(b)) {
+      const T unk = -static_cast<T>(b), occ = a;
+      return {occ, T(1) - unk - occ, unk};
+    }
+    const T occ = a, emp = b;
+    return {occ, emp, T(1) - occ - emp};
+  }
+  // Leaves out the largest mass (m(unk) on a tie, then m(occ)); the sign bits are set exactly where
+  // masses() looks for them, whatever the signs of the masses given.
+  static DempsterShaferCell of(const DempsterShaferMasses& m) {
+    const float occ = std::fabs(m.occ), emp = std::fabs(m.emp), unk = -std::fabs(m.unk);
+    if (m.unk >= m.occ && m.unk >= m.emp) return {occ, emp};
+    if (m.occ >= m.emp) return {unk, emp};
+    return {occ, unk};
+  }
 };
 class DempsterShaferRule final : public RuleOnCells<DempsterShaferRule, DempsterShaferCell> {
  public:
   static const RuleInfo& staticInfo();
   const RuleInfo& info() const override { return staticInfo(); }
   void configure(const ParameterSet& params) override;
-  CellLayout layout() const override { return CellLayout::of(DempsterShaferCell{0.0, 0.0}); }
+  CellLayout layout() const override { return CellLayout::of(DempsterShaferCell{0.0f, 0.0f}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
   void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
   bool applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
                     Grid& grid) const override;
 
   double occupancyOf(const DempsterShaferCell& c) const;
-  double nativeOf(const DempsterShaferCell& c) const { return c.occ - c.emp; }
-  bool filledOf(const DempsterShaferCell& c) const { return c.occ > c.emp; }
-  double evidenceOf(const DempsterShaferCell& c) const { return c.occ; }  // m(occ)
+  double nativeOf(const DempsterShaferCell& c) const;
+  bool filledOf(const DempsterShaferCell& c) const;
+  double evidenceOf(const DempsterShaferCell& c) const { return c.masses<double>().occ; }  // m(occ)
 };
 
 }  // namespace sg

@@ -5,13 +5,15 @@
 // listed cells gathered from the plane and scattered back), the model's floats widened as apply()
 // widens them, and repeats cell_updates.h's operations in its order; a lane's `if` is a select of
 // the updated and the old value. Addition's single-precision cells are widened on load and rounded
-// to float on store, as cell_updates.h does one cell at a time. Dempster–Shafer's cells with both
-// kinds of evidence (which no model gives) go through cell_updates.h itself, one at a time.
+// to float on store, as cell_updates.h does one cell at a time. Dempster–Shafer computes in float,
+// as cell_updates.h does, in four float lanes; its cells with both kinds of evidence (which no
+// model gives) go through cell_updates.h itself, one at a time.
 #include "sonargrid/rules/run_kernels.h"
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <span>
 #include <type_traits>
 
@@ -131,39 +133,115 @@ template <class Cell, class Group>
   }
 }
 
-// update(m) for every cell of `cells` (distinct grid indices into `plane`, one double a cell): W
-// cells at a time, gathered into lanes and scattered back; the last cells.size() mod W by
-// one(cell).
-template <class Cell, class Lanes, class One>
+// group(c0, c1, c2, c3) for every W cells of `cells` (distinct grid indices, the same evidence for
+// all), in order. The last cells.size() mod W go in a group padded with copies of its last cell:
+// the same cell in two lanes gets the same value in both (a lane's update is a function of the
+// cell's bytes alone), so their stores agree, and each cell is still updated once. A call per cell,
+// the way the last ones went before, cost HIMM's reading with its one echo cell more than its
+// lanes.
+template <class Group>
+[[gnu::always_inline]] inline void eachListedGroup(std::span<const std::uint32_t> cells,
+                                                   Group&& group) {
+  static_assert(W == 4);
+  const std::uint32_t* const c = cells.data();
+  const std::size_t n = cells.size();
+  const std::size_t whole = n - n % W;
+  for (std::size_t k = 0; k < whole; k += W) group(c[k], c[k + 1], c[k + 2], c[k + 3]);
+  if (whole < n) {
+    const std::size_t last = n - 1;
+    group(c[whole], c[std::min(whole + 1, last)], c[std::min(whole + 2, last)], c[last]);
+  }
+}
+
+// update(m) for every cell of `cells` (eachListedGroup; one double a cell), gathered into lanes and
+// scattered back.
+template <class Cell, class Lanes>
 [[gnu::always_inline]] inline void eachListed(std::span<const std::uint32_t> cells, Cell* plane,
-                                              Lanes&& update, One&& one) {
-  static_assert(sizeof(Cell) == sizeof(double) && W == 4);
-  const std::uint32_t* c = cells.data();
-  const std::uint32_t* const end = c + cells.size();
-  for (; end - c >= W; c += W) {
+                                              Lanes&& update) {
+  static_assert(sizeof(Cell) == sizeof(double));
+  eachListedGroup(cells, [&](std::uint32_t c0, std::uint32_t c1, std::uint32_t c2,
+                             std::uint32_t c3) SG_INLINE_LAMBDA {
+    Cell* const cell[W] = {plane + c0, plane + c1, plane + c2, plane + c3};
     double v[W];
-    for (int j = 0; j < W; ++j) std::memcpy(&v[j], plane + c[j], sizeof(double));
+    for (int j = 0; j < W; ++j) std::memcpy(&v[j], cell[j], sizeof(double));
     const Doubles m = update(Doubles{v[0], v[1], v[2], v[3]});
     // Written out: a loop over j went through the stack (a 32-byte store, four 8-byte loads).
     const double m0 = m[0], m1 = m[1], m2 = m[2], m3 = m[3];
-    std::memcpy(plane + c[0], &m0, sizeof(double));
-    std::memcpy(plane + c[1], &m1, sizeof(double));
-    std::memcpy(plane + c[2], &m2, sizeof(double));
-    std::memcpy(plane + c[3], &m3, sizeof(double));
-  }
-  for (; c != end; ++c) one(plane[*c]);
+    std::memcpy(cell[0], &m0, sizeof(double));
+    std::memcpy(cell[1], &m1, sizeof(double));
+    std::memcpy(cell[2], &m2, sizeof(double));
+    std::memcpy(cell[3], &m3, sizeof(double));
+  });
 }
 
-// Dempster's rule for one kind of evidence x per lane (cellrule::dempsterShafer's first two
-// cases): `grow` is the mass x adds to, `shrink` the other, `mu` the unknown mass. The masses
-// before the rule's total-conflict test, which the caller applies (denominator <= 0 keeps them).
-struct OneKind {
-  Doubles grown, shrunk, denominator;
+// DempsterShaferCell::masses() and ::of() per lane, on four cells' a and b.
+using Ints = std::int32_t __attribute__((vector_size(4 * W)));
+struct Masses {
+  Floats occ, emp, unk;
 };
-[[gnu::always_inline]] inline OneKind oneKind(Doubles grow, Doubles shrink, Doubles mu, Doubles x) {
-  const Doubles denominator = 1.0 - shrink * x;
-  const Doubles inv = 1.0 / denominator;
-  return {(grow + mu * x) * inv, shrink * (1.0 - x) * inv, denominator};
+[[gnu::always_inline]] inline Masses masses(Floats a, Floats b) {
+  const Ints occLeftOut = reinterpret_cast<Ints>(a) < 0;  // the sign bit
+  const Ints empLeftOut = reinterpret_cast<Ints>(b) < 0;
+  const Floats unk = occLeftOut ? -a : (empLeftOut ? -b : 1.0f - a - b);
+  return {occLeftOut ? 1.0f - unk - b : a, empLeftOut ? 1.0f - unk - a : b, unk};
+}
+[[gnu::always_inline]] inline Floats magnitude(Floats v) {
+  return reinterpret_cast<Floats>(reinterpret_cast<Ints>(v) & 0x7fffffff);
+}
+[[gnu::always_inline]] inline void cellsOf(const Masses& m, Floats& a, Floats& b) {
+  const Ints unkLeftOut = (m.unk >= m.occ) & (m.unk >= m.emp);
+  const Ints occLeftOut = ~unkLeftOut & (m.occ >= m.emp);
+  const Ints empLeftOut = ~(unkLeftOut | occLeftOut);
+  const Floats unk = -magnitude(m.unk);
+  a = occLeftOut ? unk : magnitude(m.occ);
+  b = empLeftOut ? unk : magnitude(m.emp);
+}
+// Bit j set where lane j's sign bit is (movmskps, SSE: in every clone).
+[[gnu::always_inline]] inline int signBits(Floats v) {
+  return __builtin_ia32_movmskps(v);
+}
+[[gnu::always_inline]] inline Floats clampUnit(Floats v) {
+  return v < 0.0f ? Floats{} : (1.0f < v ? Floats{} + 1.0f : v);  // std::clamp(v, 0, 1)
+}
+
+// Dempster's rule on four cells (a, b per lane) for the model's evidence per lane, as
+// cellrule::dempsterShafer's first two cases: one kind of evidence x, `grow` the mass x adds to,
+// `shrink` the other. Lanes of total conflict keep their cells; lanes with both kinds (which no
+// model gives) are left as they were and set in the bits returned, for cellrule to do one at a
+// time.
+[[gnu::always_inline]] inline int dempsterShaferLanes(Floats occupied, Floats empty, Floats& a,
+                                                      Floats& b) {
+  const Floats o = clampUnit(occupied), e = clampUnit(empty);
+  const Ints onlyOccupied = e == 0.0f;
+  const Ints onlyEmpty = o == 0.0f;
+  const Ints general = ~(onlyOccupied | onlyEmpty);
+  const Floats x = onlyOccupied ? o : e;
+  // Lanes where the mass x adds to is the one the cell leaves out (its sign bit): the other two are
+  // a and b, and both scale by s. All four, the usual case: nothing else to do.
+  const Floats grownCell = onlyOccupied ? a : b;
+  if (signBits(grownCell) == 0xF && signBits(reinterpret_cast<Floats>(general)) == 0) {
+    const Floats denominator = 1.0f - (onlyOccupied ? b : a) * x;
+    const Floats s = (1.0f - x) * (1.0f / denominator);
+    const Ints keep = denominator <= 0.0f;  // total conflict
+    a = keep ? a : a * s;
+    b = keep ? b : b * s;
+    return 0;
+  }
+  const Masses m = masses(a, b);
+  const Floats grow = onlyOccupied ? m.occ : m.emp;
+  const Floats shrink = onlyOccupied ? m.emp : m.occ;
+  const Floats denominator = 1.0f - shrink * x;
+  const Floats inv = 1.0f / denominator;
+  const Floats s = (1.0f - x) * inv;
+  const Floats grown = (grow + m.unk * x) * inv;
+  const Floats shrunk = shrink * s;
+  Floats newA, newB;
+  cellsOf({onlyOccupied ? grown : shrunk, onlyOccupied ? shrunk : grown, m.unk * s}, newA, newB);
+  const Ints scaled = reinterpret_cast<Ints>(grownCell) < 0;
+  const Ints keep = (denominator <= 0.0f) | general;
+  a = keep ? a : (scaled ? a * s : newA);
+  b = keep ? b : (scaled ? b * s : newB);
+  return signBits(reinterpret_cast<Floats>(general));
 }
 
 // Dempster–Shafer's general case, for a cell with both kinds of evidence (no cone model gives one):
@@ -176,7 +254,8 @@ struct OneKind {
 static_assert(sizeof(EmptyEvidence) == sizeof(float) && sizeof(OccupiedEvidence) == sizeof(float));
 static_assert(sizeof(BayesCell) == sizeof(double) && sizeof(LogCell) == sizeof(double));
 static_assert(sizeof(LogOddsCell) == sizeof(double));
-static_assert(sizeof(DempsterShaferCell) == 2 * sizeof(double));
+static_assert(sizeof(DempsterShaferCell) == 2 * sizeof(float) &&
+              sizeof(DempsterShaferCell) == sizeof(double));
 
 }  // namespace
 
@@ -220,14 +299,11 @@ SG_RUN_CLONES void bayes(const EvidenceRuns& runs, BayesCell* plane, bool likeli
 }
 
 SG_RUN_CLONES void bayesUniform(double p, std::span<const std::uint32_t> cells, BayesCell* plane) {
-  eachListed(
-      cells, plane,
-      [p](Doubles m) SG_INLINE_LAMBDA {
-        const Doubles num = p * m;
-        const Doubles den = num + (1.0 - p) * (1.0 - m);
-        return den > 0.0 ? num / den : m;
-      },
-      [p](BayesCell& cell) SG_INLINE_LAMBDA { cellrule::bayes(p, cell); });
+  eachListed(cells, plane, [p](Doubles m) SG_INLINE_LAMBDA {
+    const Doubles num = p * m;
+    const Doubles den = num + (1.0 - p) * (1.0 - m);
+    return den > 0.0 ? num / den : m;
+  });
 }
 
 SG_RUN_CLONES void logProduct(const EvidenceRuns& runs, LogCell* plane) {
@@ -257,30 +333,22 @@ SG_RUN_CLONES void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* 
   eachGroup(runs, plane,
             [](const float* empty, const float* occupied, const float*, DempsterShaferCell* cells)
                 SG_INLINE_LAMBDA {
-                  const Doubles o = clamp(widen(occupied), 0.0, 1.0);
-                  const Doubles e = clamp(widen(empty), 0.0, 1.0);
-                  const Doubles lo = load(cells), hi = load(cells + 2);
-                  const Doubles mo = __builtin_shufflevector(lo, hi, 0, 2, 4, 6);
-                  const Doubles me = __builtin_shufflevector(lo, hi, 1, 3, 5, 7);
-                  // One kind of evidence x: occupied (e = 0, cellrule's first case) or empty (o =
-                  // 0, its second); `grow` is the mass x adds to, `shrink` the other.
-                  const auto onlyOccupied = e == 0.0;
-                  const auto onlyEmpty = o == 0.0;
-                  const Doubles x = onlyOccupied ? o : e;
-                  const Doubles grow = onlyOccupied ? mo : me;
-                  const Doubles shrink = onlyOccupied ? me : mo;
-                  const OneKind r = oneKind(grow, shrink, 1.0 - mo - me, x);
-                  // Total conflict (denominator <= 0) keeps the masses, as does a lane of both
-                  // kinds, done below by cellrule.
-                  const auto general = ~(onlyOccupied | onlyEmpty);
-                  const auto keep = (r.denominator <= 0.0) | general;
-                  const Doubles newOcc = keep ? mo : (onlyOccupied ? r.grown : r.shrunk);
-                  const Doubles newEmp = keep ? me : (onlyOccupied ? r.shrunk : r.grown);
-                  store(cells, __builtin_shufflevector(newOcc, newEmp, 0, 4, 1, 5));
-                  store(cells + 2, __builtin_shufflevector(newOcc, newEmp, 2, 6, 3, 7));
-                  if (anyLane(general)) {
+                  Floats o, e, lo, hi;  // lo, hi: a0 b0 a1 b1, a2 b2 a3 b3
+                  std::memcpy(&o, occupied, sizeof o);
+                  std::memcpy(&e, empty, sizeof e);
+                  std::memcpy(&lo, cells, sizeof lo);
+                  std::memcpy(&hi, cells + 2, sizeof hi);
+                  Floats a = __builtin_shufflevector(lo, hi, 0, 2, 4, 6);
+                  Floats b = __builtin_shufflevector(lo, hi, 1, 3, 5, 7);
+                  const int general = dempsterShaferLanes(o, e, a, b);
+                  lo = __builtin_shufflevector(a, b, 0, 4, 1, 5);
+                  hi = __builtin_shufflevector(a, b, 2, 6, 3, 7);
+                  std::memcpy(cells, &lo, sizeof lo);
+                  std::memcpy(cells + 2, &hi, sizeof hi);
+                  if (general != 0) {
                     for (int j = 0; j < W; ++j) {
-                      if (general[j]) generalDempsterShafer(occupied[j], empty[j], cells[j]);
+                      if (general & (1 << j))
+                        generalDempsterShafer(occupied[j], empty[j], cells[j]);
                     }
                   }
                 });
@@ -292,54 +360,33 @@ SG_RUN_CLONES void logOddsUniform(float probability, std::span<const std::uint32
   const double p = std::clamp(static_cast<double>(probability), cellrule::kProbabilityFloor,
                               1.0 - cellrule::kProbabilityFloor);
   const double ratio = p / (1.0 - p);
-  eachListed(
-      cells, plane,
-      [=](Doubles o) SG_INLINE_LAMBDA { return clamp(o * ratio * invPrior, minOdds, maxOdds); },
-      [=](LogOddsCell& cell)
-          SG_INLINE_LAMBDA { cellrule::logOdds(probability, invPrior, minOdds, maxOdds, cell); });
+  eachListed(cells, plane, [=](Doubles o) SG_INLINE_LAMBDA {
+    return clamp(o * ratio * invPrior, minOdds, maxOdds);
+  });
 }
 
 SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
                                          std::span<const std::uint32_t> cells,
                                          DempsterShaferCell* plane) {
-  const double o = std::clamp(static_cast<double>(occupied), 0.0, 1.0);
-  const double e = std::clamp(static_cast<double>(empty), 0.0, 1.0);
-  if (e != 0.0 && o != 0.0) {  // both kinds: cellrule's general case, one cell at a time
+  const float o = std::clamp(occupied, 0.0f, 1.0f);
+  const float e = std::clamp(empty, 0.0f, 1.0f);
+  if (e != 0.0f && o != 0.0f) {  // both kinds: cellrule's general case, one cell at a time
     for (const std::uint32_t c : cells) generalDempsterShafer(occupied, empty, plane[c]);
     return;
   }
-  // One kind of evidence x, as cellrule's first case (occupied, e = 0) or second (empty, o = 0):
-  // `grow` is the mass x adds to, `shrink` the other; W cells at a time, gathered from the plane.
-  static_assert(W == 4);
-  const std::uint32_t* c = cells.data();
-  const std::uint32_t* const end = c + cells.size();
-  auto lanes = [&](auto occupiedKind) SG_INLINE_LAMBDA {
-    constexpr bool kOccupied = decltype(occupiedKind)::value;
-    const Doubles x = splat(kOccupied ? o : e);
-    auto grow = [](DempsterShaferCell& m) -> double& { return kOccupied ? m.occ : m.emp; };
-    auto shrink = [](DempsterShaferCell& m) -> double& { return kOccupied ? m.emp : m.occ; };
-    for (; end - c >= W; c += W) {
-      DempsterShaferCell* const m[W] = {plane + c[0], plane + c[1], plane + c[2], plane + c[3]};
-      const Doubles mo = {m[0]->occ, m[1]->occ, m[2]->occ, m[3]->occ};
-      const Doubles me = {m[0]->emp, m[1]->emp, m[2]->emp, m[3]->emp};
-      const Doubles g = kOccupied ? mo : me;
-      const Doubles s = kOccupied ? me : mo;
-      const OneKind r = oneKind(g, s, 1.0 - mo - me, x);
-      const auto keep = r.denominator <= 0.0;  // total conflict keeps the masses
-      const Doubles grown = keep ? g : r.grown;
-      const Doubles shrunk = keep ? s : r.shrunk;
-      // Written out: a loop over j went through the stack.
-      grow(*m[0]) = grown[0], shrink(*m[0]) = shrunk[0];
-      grow(*m[1]) = grown[1], shrink(*m[1]) = shrunk[1];
-      grow(*m[2]) = grown[2], shrink(*m[2]) = shrunk[2];
-      grow(*m[3]) = grown[3], shrink(*m[3]) = shrunk[3];
-    }
-  };
-  if (e == 0.0)
-    lanes(std::true_type{});
-  else
-    lanes(std::false_type{});
-  for (; c != end; ++c) cellrule::dempsterShafer(occupied, empty, plane[*c]);
+  // One kind of evidence: four cells at a time (eachListed), each cell's two floats one 8-byte lane
+  // of lo = a0 b0 a1 b1 and hi = a2 b2 a3 b3.
+  using Pairs = double __attribute__((vector_size(16)));
+  eachListed(cells, plane, [=](Doubles m) SG_INLINE_LAMBDA {
+    const Floats lo = reinterpret_cast<Floats>(Pairs{m[0], m[1]});
+    const Floats hi = reinterpret_cast<Floats>(Pairs{m[2], m[3]});
+    Floats a = __builtin_shufflevector(lo, hi, 0, 2, 4, 6);
+    Floats b = __builtin_shufflevector(lo, hi, 1, 3, 5, 7);
+    dempsterShaferLanes(Floats{} + occupied, Floats{} + empty, a, b);
+    const Pairs newLo = reinterpret_cast<Pairs>(__builtin_shufflevector(a, b, 0, 4, 1, 5));
+    const Pairs newHi = reinterpret_cast<Pairs>(__builtin_shufflevector(a, b, 2, 6, 3, 7));
+    return Doubles{newLo[0], newLo[1], newHi[0], newHi[1]};
+  });
 }
 
 }  // namespace sg::runs
