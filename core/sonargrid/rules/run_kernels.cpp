@@ -13,9 +13,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <limits>
 #include <span>
-#include <type_traits>
 
 #include "sonargrid/rules/cell_updates.h"
 
@@ -71,14 +69,6 @@ using Floats = float __attribute__((vector_size(4 * W)));
 }
 [[gnu::always_inline]] inline Doubles splat(double x) {
   return Doubles{x, x, x, x};
-}
-// Whether any lane of a comparison's result is set: one test where looking at each lane was four.
-using Mask = decltype(Doubles{} == Doubles{});
-[[gnu::always_inline]] inline bool anyLane(Mask m) {
-  std::uint64_t lane[W];
-  std::memcpy(lane, &m, sizeof lane);
-  static_assert(sizeof lane == sizeof m && W == 4);
-  return (lane[0] | lane[1] | lane[2] | lane[3]) != 0;
 }
 // std::clamp(v, lo, hi) per lane: v < lo ? lo : hi < v ? hi : v, which is what std::clamp gives
 // for any v (NaN and ±0 included) when lo <= hi.
