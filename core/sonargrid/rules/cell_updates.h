@@ -86,29 +86,22 @@ inline constexpr double kProbabilityFloor = 1e-6;
   //   s = (1 − o) / (1 − m(emp) o)
   // (and symmetrically for e): the general form below with e = 0, in fewer operations. When the
   // mass o adds to is the one the cell leaves out, the largest, it stays the largest and stays left
-  // out: the cell's two floats are scaled by s.
-  if (e == 0.0f) {
-    const float denominator = 1.0f - m.emp * o;
+  // out: the cell's two floats are scaled by s. The run kernels' lanes do the same, in this order.
+  if (e == 0.0f || o == 0.0f) {
+    const bool occupiedKind = e == 0.0f;  // x = o adds to m(occ); else x = e adds to m(emp)
+    const float x = occupiedKind ? o : e;
+    const float grow = occupiedKind ? m.occ : m.emp, shrink = occupiedKind ? m.emp : m.occ;
+    const float denominator = 1.0f - shrink * x;
     if (denominator <= 0.0f) return;  // total conflict, see below
     const float inv = 1.0f / denominator;
-    const float s = (1.0f - o) * inv;
-    if (std::signbit(cell.a)) {
+    const float s = (1.0f - x) * inv;
+    if (std::signbit(occupiedKind ? cell.a : cell.b)) {
       cell = {cell.a * s, cell.b * s};
       return;
     }
-    cell = DempsterShaferCell::of({(m.occ + m.unk * o) * inv, m.emp * s, m.unk * s});
-    return;
-  }
-  if (o == 0.0f) {
-    const float denominator = 1.0f - m.occ * e;
-    if (denominator <= 0.0f) return;
-    const float inv = 1.0f / denominator;
-    const float s = (1.0f - e) * inv;
-    if (std::signbit(cell.b)) {
-      cell = {cell.a * s, cell.b * s};
-      return;
-    }
-    cell = DempsterShaferCell::of({m.occ * s, (m.emp + m.unk * e) * inv, m.unk * s});
+    const float grown = (grow + m.unk * x) * inv, shrunk = shrink * s;
+    cell = DempsterShaferCell::of(occupiedKind ? DempsterShaferMasses{grown, shrunk, m.unk * s}
+                                               : DempsterShaferMasses{shrunk, grown, m.unk * s});
     return;
   }
   if (o + e > 1.0f) {  // masses must sum to at most one
