@@ -119,7 +119,7 @@ Footprint Mapper::footprintOf(const Pose2D& robot, const Reading& reading) const
   return fp;
 }
 
-void Mapper::applyRuns(const EvidenceRuns& runs, Footprint* deferred) {
+void Mapper::applyRuns(const EvidenceRuns& runs, EvidenceRuns* deferred) {
   rule_->applyRuns(runs, grid_, deferred);
   for (const EvidenceRuns::Run& run : runs.runs) grid_.markWritten(run.cell, run.count);
 }
@@ -313,17 +313,18 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
   if (direct) return integrateDirect(beams, cancel, threads);
   if (threads == 1) {
     const bool totals = rule_->needsTotals();
-    EvidenceRuns runs;
+    EvidenceRuns runs, deferred;
     for (std::size_t i = 0; i < n; ++i) {
       if (cancel && i % kCancelStride == 0 && cancel->load(std::memory_order_relaxed)) return false;
       scratch_.clear();
-      // Without an observer, the model's runs go straight to the rule; the cells that wait for the
+      // Without an observer, the model's runs go straight to the rule; the runs that wait for the
       // totals (addition's occupied arc) are applied once the reading's runs are all in.
       runs.clear();
       if (!observer_ && model_->evidenceRuns(beams[i], grid_.spec(), *tables_, RowWindow{}, runs)) {
-        applyRuns(runs, &scratch_);
+        deferred.clear();
+        applyRuns(runs, &deferred);
         if (totals)
-          rule_->applyPart(scratch_, FootprintTotals{occupiedFixedPoint(scratch_)}, grid_);
+          rule_->applyDeferred(deferred, FootprintTotals{occupiedFixedPoint(deferred)}, grid_);
         ++readings_;
         continue;
       }
@@ -483,16 +484,28 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
     };
     runThreads(threads, [&](unsigned k) {
       Step& mine = state[k];
-      std::vector<Footprint> ring(kSlots);
+      // A part waiting for the totals: the runs the rule deferred, when the model hands its runs
+      // straight to the rule (their cells are marked already), else the whole part from
+      // footprintRows().
+      struct Waiting {
+        bool runs = false;
+        EvidenceRuns deferred;
+        Footprint part;
+      };
+      std::vector<Waiting> ring(kSlots);
       EvidenceRuns runs;
       std::size_t applied = 0;
       std::size_t computed = 0, published = 0;
       auto applyNext = [&] {
         FootprintTotals sum;
         for (const Step& b : state) sum.add(b.partial[applied]);
-        const Footprint& fp = ring[applied % kSlots];
-        rule_->applyPart(fp, sum, grid_);
-        markObserved(fp);
+        const Waiting& w = ring[applied % kSlots];
+        if (w.runs) {
+          rule_->applyDeferred(w.deferred, sum, grid_);
+        } else {
+          rule_->applyPart(w.part, sum, grid_);
+          markObserved(w.part);
+        }
         ++applied;
       };
       // Posts the totals computed since the last post: in batches of kPostBatch, and always before
@@ -510,17 +523,18 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
           if (!waitPosted(applied)) return halt(applied);
           applyNext();
         }
-        // The part waiting for the totals: the whole part from footprintRows(), or, when the model
-        // hands its runs straight to the rule, the cells the rule deferred (applyNext marks them
-        // again, which changes nothing).
-        Footprint& fp = ring[i % kSlots];
-        fp.clear();
+        Waiting& w = ring[i % kSlots];
         runs.clear();
-        if (model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], runs))
-          applyRuns(runs, &fp);
-        else
-          model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
-        mine.partial[i] = occupiedFixedPoint(fp);
+        w.runs = model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], runs);
+        if (w.runs) {
+          w.deferred.clear();
+          applyRuns(runs, &w.deferred);
+          mine.partial[i] = occupiedFixedPoint(w.deferred);
+        } else {
+          w.part.clear();
+          model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], w.part);
+          mine.partial[i] = occupiedFixedPoint(w.part);
+        }
         ++computed;
         if (computed - published < kPostBatch) continue;
         publish();

@@ -133,7 +133,7 @@ class Mapper {
   void applyFootprint(const Footprint& footprint);
   // The rule's applyRuns() (its deferred cells to `deferred`), and the runs' cells marked observed.
   // Several threads may apply runs in disjoint rows at once.
-  void applyRuns(const EvidenceRuns& runs, Footprint* deferred);
+  void applyRuns(const EvidenceRuns& runs, EvidenceRuns* deferred);
   void markObserved(const Footprint& footprint) { grid_.markWritten(footprint); }
   bool grow(const Position& lo, const Position& hi);
   bool integrateBeams(const std::vector<Beam>& beams, const std::atomic<bool>* cancel);

@@ -146,6 +146,7 @@ class TstFusedRuns : public QObject {
   void uniformGivesApplysBits();
   void runsGiveApplysBits_data();
   void runsGiveApplysBits();
+  void deferredRunsGiveApplysBits();
 };
 
 void TstFusedRuns::runsGiveTheFootprintPathsBits_data() {
@@ -452,10 +453,85 @@ void TstFusedRuns::runsGiveApplysBits() {
     }
     Grid oracle = preparedGrid(*r, kCells), viaRuns = preparedGrid(*r, kCells);
     r->apply(footprint, oracle);
-    Footprint deferred;
+    EvidenceRuns deferred;
     r->applyRuns(runs, viaRuns, &deferred);
-    QVERIFY(deferred.cells.empty());
+    QVERIFY(deferred.runs.empty());
     QVERIFY2(sameGrid(rule.toStdString(), oracle, viaRuns),
+             qPrintable(QString("shift %1: the grid differs from apply()'s").arg(shift)));
+  }
+}
+
+void TstFusedRuns::deferredRunsGiveApplysBits() {
+  // Normalising addition (paper 001 §3.1): applyRuns() applies the empty evidence and defers each
+  // run's span from its first to its last cell of non-zero occupied evidence; applyDeferred() then
+  // scales by the reading's total. Against apply() of the same cells, which sums the whole
+  // footprint itself. The runs hold spans that start and end inside, zeros within a span, whole
+  // runs of zeros (one longer than the eight values tested at a time), ±0, a negative value
+  // (which counts in the total), NaN (which counts 0), and runs of 1 to 19 cells.
+  const std::unique_ptr<UpdateRule> r = makeUpdateRule("addition");
+  r->configure(ParameterSet(r->info().parameters));  // normalise = 1, the default
+  QVERIFY(r->needsTotals());
+  constexpr std::uint32_t kCells = 160;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<std::vector<float>> occupiedOf{
+      {0.0f},
+      {0.4f},
+      {0.0f, 0.3f, 0.0f},
+      {-0.0f, 0.0f, 0.25f, 0.0f, 0.5f, -0.0f},
+      std::vector<float>(19, 0.0f),
+      {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.6f, 0.0f},
+      {0.2f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
+       0.0f, 0.0f, 0.0f, 0.0f},
+      {0.0f, -0.1f, 0.0f, 0.0f, 0.7f},
+      {nan, 0.0f, 0.0f},
+      {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.1f, 0.9f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
+       0.0f, 0.0f, 0.0f, 0.0f},
+  };
+  for (std::uint32_t shift = 0; shift < 5; ++shift) {
+    EvidenceRuns runs;
+    Footprint footprint;
+    std::uint32_t cell = 1 + shift;
+    std::size_t v = 0;
+    std::size_t nonZero = 0;
+    for (const std::vector<float>& occupied : occupiedOf) {
+      const int count = static_cast<int>(occupied.size());
+      runs.runs.push_back(EvidenceRuns::Run{cell, count, static_cast<std::uint32_t>(v)});
+      for (int k = 0; k < count; ++k, ++v) {
+        // The cone's empty evidence before the arc, none on it.
+        const float o = occupied[static_cast<std::size_t>(k)];
+        const bool arc = o != 0.0f;
+        nonZero += arc ? 1 : 0;
+        CellEvidence c(cell + static_cast<std::uint32_t>(k), arc ? 0.0 : 0.3, 0.0, 0.5);
+        c.occupied = o;
+        runs.empty.push_back(c.empty);
+        runs.occupied.push_back(c.occupied);
+        runs.probability.push_back(c.probability);
+        footprint.cells.push_back(c);
+      }
+      cell += static_cast<std::uint32_t>(count) + 1;
+    }
+    QVERIFY(cell <= kCells);
+    for (int k = 0; k < 7; ++k) {
+      runs.empty.push_back(0.0f);
+      runs.occupied.push_back(0.0f);
+      runs.probability.push_back(0.5f);
+    }
+    Grid oracle = preparedGrid(*r, kCells), viaRuns = preparedGrid(*r, kCells);
+    r->apply(footprint, oracle);
+    EvidenceRuns deferred;
+    r->applyRuns(runs, viaRuns, &deferred);
+    // The spans, counted by hand from occupiedOf: runs 2, 3, 4, 6, 7, 8, 9 and 10 have one, of
+    // 1, 1, 3, 1, 1, 4, 1 and 2 cells (14); the 11 values other than ±0 (NaN and −0.1 among
+    // them) lie in them, with 3 zeros between.
+    QCOMPARE(deferred.runs.size(), std::size_t{8});
+    std::size_t deferredCells = 0;
+    for (const EvidenceRuns::Run& run : deferred.runs)
+      deferredCells += static_cast<std::size_t>(run.count);
+    QCOMPARE(deferredCells, std::size_t{14});
+    QCOMPARE(nonZero, std::size_t{11});
+    QCOMPARE(occupiedFixedPoint(deferred), occupiedFixedPoint(footprint));
+    r->applyDeferred(deferred, FootprintTotals{occupiedFixedPoint(deferred)}, viaRuns);
+    QVERIFY2(sameGrid("addition", oracle, viaRuns),
              qPrintable(QString("shift %1: the grid differs from apply()'s").arg(shift)));
   }
 }

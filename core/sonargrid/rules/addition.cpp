@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include <algorithm>
+
 #include "sonargrid/models/lanes.h"
 #include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
@@ -46,34 +48,49 @@ void AdditionRule::applyPart(const Footprint& fp, const FootprintTotals& totals,
   }
 }
 
-void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const {
+void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const {
   runs::additionEmpty(runs, grid.cells<EmptyEvidence>(0));
   if (!normalise_) {
-    runs::additionOccupied(runs, grid.cells<OccupiedEvidence>(1));
+    runs::additionOccupied(runs, grid.cells<OccupiedEvidence>(1), 1.0);
     return;
   }
-  // The occupied cells wait for the reading's total (applyPart). A cell of no occupied evidence
-  // adds nothing to it (0 or −0 in fixed point is 0), so only the others are kept: the arc.
-  // Most of a cone is not on the arc: eight values at a time are first tested for being all zero
-  // (the vector == holds for ±0 and not for NaN or denormals, as the scalar != says the opposite;
-  // nothing in the program sets the CPU to treat denormals as zero).
+  // The occupied cells wait for the reading's total (applyDeferred). A cell of no occupied evidence
+  // adds nothing to it (0 or −0 in fixed point is 0) and is left as it was by the update, so each
+  // run is deferred from its first cell of other occupied evidence to its last: the arc's span of
+  // the run, with the occupied values alone. Most of a cone is not on the arc: eight values at a
+  // time are first tested for being all zero (the vector == holds for ±0 and not for NaN or
+  // denormals, as the scalar == does; nothing in the program sets the CPU to treat denormals as
+  // zero).
+  std::size_t used = 0;
+  if (!deferred->runs.empty()) used = deferred->runs.back().first + deferred->runs.back().count;
+  auto zeros = [](const float* p) {
+    const lanes::Floats lo = lanes::load(p), hi = lanes::load(p + 4);
+    return lanes::all((lo == lanes::Floats{}) & (hi == lanes::Floats{}));
+  };
   for (const EvidenceRuns::Run& run : runs.runs) {
     const float* const occupied = runs.occupied.data() + run.first;
-    auto keep = [&](int k) {
-      if (occupied[k] != 0.0f) {
-        CellEvidence c = cellrule::cellOfRun(runs, run, k);
-        c.empty = 0.0f;  // applied above
-        deferred->cells.push_back(c);
-      }
-    };
-    int k = 0;
-    for (; k + 8 <= run.count; k += 8) {
-      const lanes::Floats lo = lanes::load(occupied + k), hi = lanes::load(occupied + k + 4);
-      if (lanes::all((lo == lanes::Floats{}) & (hi == lanes::Floats{}))) continue;
-      for (int j = k; j < k + 8; ++j) keep(j);
-    }
-    for (; k < run.count; ++k) keep(k);
+    int lo = 0, hi = run.count;
+    while (lo + 8 <= hi && zeros(occupied + lo)) lo += 8;
+    while (lo < hi && occupied[lo] == 0.0f) ++lo;
+    if (lo == hi) continue;
+    while (hi - 8 >= lo && zeros(occupied + hi - 8)) hi -= 8;
+    while (occupied[hi - 1] == 0.0f) --hi;  // stops at lo at the latest
+    const auto count = static_cast<std::size_t>(hi - lo);
+    // Three values of room past the span: the lanes read four from a run's start (run_kernels).
+    if (deferred->occupied.size() < used + count + 3) deferred->occupied.resize(used + count + 3);
+    std::copy_n(occupied + lo, count, deferred->occupied.data() + used);
+    deferred->runs.push_back(
+        {run.cell + static_cast<std::uint32_t>(lo), hi - lo, static_cast<std::uint32_t>(used)});
+    used += count;
   }
+}
+
+void AdditionRule::applyDeferred(const EvidenceRuns& deferred, const FootprintTotals& totals,
+                                 Grid& grid) const {
+  // As applyPart() with the cells' empty evidence applied already.
+  double scale = 1.0;
+  if (normalise_ && totals.occupied > 0) scale = 1.0 / totals.occupiedSum();
+  runs::additionOccupied(deferred, grid.cells<OccupiedEvidence>(1), scale);
 }
 
 double AdditionRule::nativeOf(const EmptyEvidence& emp, const OccupiedEvidence& occ) const {

@@ -55,7 +55,7 @@ bool BayesRule::applyUniform(const CellEvidence& evidence, std::span<const std::
   return true;
 }
 
-void BayesRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* /*deferred*/) const {
+void BayesRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* /*deferred*/) const {
   runs::bayes(runs, grid.cells<BayesCell>(), input_ == Input::Likelihood);
 }
 

@@ -40,7 +40,7 @@ bool DempsterShaferRule::applyUniform(const CellEvidence& evidence,
 }
 
 void DempsterShaferRule::applyRuns(const EvidenceRuns& runs, Grid& grid,
-                                   Footprint* /*deferred*/) const {
+                                   EvidenceRuns* /*deferred*/) const {
   runs::dempsterShafer(runs, grid.cells<DempsterShaferCell>());
 }
 

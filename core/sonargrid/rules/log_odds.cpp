@@ -56,7 +56,8 @@ bool LogOddsRule::applyUniform(const CellEvidence& evidence, std::span<const std
   return true;
 }
 
-void LogOddsRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* /*deferred*/) const {
+void LogOddsRule::applyRuns(const EvidenceRuns& runs, Grid& grid,
+                            EvidenceRuns* /*deferred*/) const {
   runs::logOdds(runs, grid.cells<LogOddsCell>(), 1.0 / priorOdds_, minOdds_, maxOdds_);
 }
 

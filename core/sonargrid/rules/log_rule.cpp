@@ -50,7 +50,7 @@ bool LogRule::applyUniform(const CellEvidence& evidence, std::span<const std::ui
   return true;
 }
 
-void LogRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* /*deferred*/) const {
+void LogRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* /*deferred*/) const {
   runs::logProduct(runs, grid.cells<LogCell>());
 }
 

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include <algorithm>
 #include <stdexcept>
 
 #include "sonargrid/registry_hooks.h"
@@ -70,13 +71,38 @@ Compatibility compatibility(const std::string& model, const std::string& rule) {
   return {};
 }
 
-void UpdateRule::applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const {
+void UpdateRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const {
+  if (needsTotals()) {
+    // Every run deferred as it is, its values copied after those deferred before.
+    std::size_t used = 0;
+    for (const EvidenceRuns::Run& run : deferred->runs)
+      used = std::max(used, run.first + static_cast<std::size_t>(run.count));
+    for (const EvidenceRuns::Run& run : runs.runs) {
+      const auto count = static_cast<std::size_t>(run.count);
+      for (auto* values : {&deferred->empty, &deferred->occupied, &deferred->probability})
+        if (values->size() < used + count) values->resize(used + count);
+      std::copy_n(runs.empty.data() + run.first, count, deferred->empty.data() + used);
+      std::copy_n(runs.occupied.data() + run.first, count, deferred->occupied.data() + used);
+      std::copy_n(runs.probability.data() + run.first, count, deferred->probability.data() + used);
+      deferred->runs.push_back({run.cell, run.count, static_cast<std::uint32_t>(used)});
+      used += count;
+    }
+    return;
+  }
   thread_local Footprint part;
-  Footprint& out = needsTotals() ? *deferred : part;
-  if (!needsTotals()) part.clear();
+  part.clear();
   for (const EvidenceRuns::Run& run : runs.runs)
-    for (int k = 0; k < run.count; ++k) out.cells.push_back(cellrule::cellOfRun(runs, run, k));
-  if (!needsTotals()) apply(part, grid);
+    for (int k = 0; k < run.count; ++k) part.cells.push_back(cellrule::cellOfRun(runs, run, k));
+  apply(part, grid);
+}
+
+void UpdateRule::applyDeferred(const EvidenceRuns& deferred, const FootprintTotals& totals,
+                               Grid& grid) const {
+  thread_local Footprint part;
+  part.clear();
+  for (const EvidenceRuns::Run& run : deferred.runs)
+    for (int k = 0; k < run.count; ++k) part.cells.push_back(cellrule::cellOfRun(deferred, run, k));
+  applyPart(part, totals, grid);
 }
 
 }  // namespace sg

@@ -30,9 +30,11 @@ class AdditionRule final : public RuleOnCells<AdditionRule, EmptyEvidence, Occup
     return CellLayout::of(EmptyEvidence{0.0f}, OccupiedEvidence{0.0f});
   }
   void apply(const Footprint& footprint, Grid& grid) const override;
-  void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
+  void applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const override;
   bool needsTotals() const override { return normalise_; }
   void applyPart(const Footprint& part, const FootprintTotals& totals, Grid& grid) const override;
+  void applyDeferred(const EvidenceRuns& deferred, const FootprintTotals& totals,
+                     Grid& grid) const override;
 
   double occupancyOf(const EmptyEvidence& e, const OccupiedEvidence& o) const;
   double nativeOf(const EmptyEvidence& e, const OccupiedEvidence& o) const;
@@ -62,7 +64,7 @@ class BayesRule final : public RuleOnCells<BayesRule, BayesCell> {
   void configure(const ParameterSet& params) override;
   CellLayout layout() const override { return CellLayout::of(BayesCell{prior_}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
-  void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
+  void applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const override;
   bool applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
                     Grid& grid) const override;
 
@@ -86,7 +88,7 @@ class LogRule final : public RuleOnCells<LogRule, LogCell> {
   void configure(const ParameterSet& params) override;
   CellLayout layout() const override { return CellLayout::of(LogCell{1.0}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
-  void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
+  void applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const override;
   bool applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
                     Grid& grid) const override;
 
@@ -109,7 +111,7 @@ class LogOddsRule final : public RuleOnCells<LogOddsRule, LogOddsCell> {
   void configure(const ParameterSet& params) override;
   CellLayout layout() const override { return CellLayout::of(LogOddsCell{priorOdds_}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
-  void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
+  void applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const override;
   bool applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
                     Grid& grid) const override;
 
@@ -201,7 +203,7 @@ class DempsterShaferRule final : public RuleOnCells<DempsterShaferRule, Dempster
   void configure(const ParameterSet& params) override;
   CellLayout layout() const override { return CellLayout::of(DempsterShaferCell{0.0f, 0.0f}); }
   void apply(const Footprint& footprint, Grid& grid) const override;
-  void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const override;
+  void applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const override;
   bool applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
                     Grid& grid) const override;
 

@@ -95,12 +95,14 @@ template <std::size_t Bytes>
 // W cells, computed on a copy of their values from before the run's other groups (so that the
 // cells both cover get the same value from either) and copied back at the end; a run shorter
 // than W is updated on a copy padded with its first cell. The values past a run that the padding
-// lanes read are ignored.
+// lanes read are ignored. The values are those of `runs`' arrays, or, with `occupiedOnly`, of its
+// occupied array alone (all three pointers point into it; a deferred run's, UpdateRule::applyRuns).
 template <class Cell, class Group>
-[[gnu::always_inline]] inline void eachGroup(const EvidenceRuns& runs, Cell* plane, Group&& group) {
-  const float* const empty = runs.empty.data();
+[[gnu::always_inline]] inline void eachGroup(const EvidenceRuns& runs, Cell* plane, Group&& group,
+                                             bool occupiedOnly = false) {
   const float* const occupied = runs.occupied.data();
-  const float* const probability = runs.probability.data();
+  const float* const empty = occupiedOnly ? occupied : runs.empty.data();
+  const float* const probability = occupiedOnly ? occupied : runs.probability.data();
   for (const EvidenceRuns::Run& run : runs.runs) {
     Cell* const cells = plane + run.cell;
     const std::size_t v = run.first;
@@ -259,14 +261,18 @@ SG_RUN_CLONES void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp) {
                 });
 }
 
-SG_RUN_CLONES void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ) {
-  eachGroup(runs, occ,
-            [](const float*, const float* occupied, const float*, OccupiedEvidence* cells)
-                SG_INLINE_LAMBDA {
-                  const Doubles po = widen(occupied) * 1.0;  // the scale
-                  const Doubles m = widen(cells);
-                  narrow(cells, po > 0.0 ? m + po - m * po : m);
-                });
+SG_RUN_CLONES void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ, double scale) {
+  // po > 0 exactly where c.occupied > 0, the scale being positive and finite: the product of a
+  // float and a scale of at least 2^-63 cannot round to 0 in double.
+  eachGroup(
+      runs, occ,
+      [scale](const float*, const float* occupied, const float*, OccupiedEvidence* cells)
+          SG_INLINE_LAMBDA {
+            const Doubles po = widen(occupied) * scale;
+            const Doubles m = widen(cells);
+            narrow(cells, po > 0.0 ? m + po - m * po : m);
+          },
+      true);
 }
 
 SG_RUN_CLONES void bayes(const EvidenceRuns& runs, BayesCell* plane, bool likelihood) {

@@ -17,8 +17,10 @@ namespace sg::runs {
 
 // AdditionRule::applyPart's empty update of every cell of the runs with c.empty > 0.
 void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp);
-// Its occupied update with scale 1 (no normalisation) of every cell with c.occupied > 0.
-void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ);
+// Its occupied update with `scale` (1 without normalisation; positive) of every cell with
+// c.occupied > 0, reading the runs' occupied values alone (a reading's deferred runs,
+// AdditionRule::applyRuns).
+void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ, double scale);
 // Every cell of the runs in `cells` (the grid's plane):
 // BayesRule::apply, with p = 0.5 + (pO − pE)/2 (`likelihood` false) or the model's probability.
 void bayes(const EvidenceRuns& runs, BayesCell* cells, bool likelihood);

@@ -61,6 +61,16 @@ inline std::int64_t occupiedFixedPoint(const Footprint& footprint) {
   for (const CellEvidence& c : footprint.cells) sum.add(occupiedFixedPoint(c.occupied));
   return sum.occupied;
 }
+// The same of the cells of some runs (a reading's deferred runs, UpdateRule::applyRuns), whose
+// occupied values alone are read.
+inline std::int64_t occupiedFixedPoint(const EvidenceRuns& runs) {
+  FootprintTotals sum;
+  for (const EvidenceRuns::Run& run : runs.runs) {
+    const float* const occupied = runs.occupied.data() + run.first;
+    for (int k = 0; k < run.count; ++k) sum.add(occupiedFixedPoint(occupied[k]));
+  }
+  return sum.occupied;
+}
 
 class UpdateRule {
  public:
@@ -107,12 +117,19 @@ class UpdateRule {
   // Folds a reading's cells given as runs (footprint.h; the mapper's batch path, where the model
   // hands its cells over as runs), each cell as apply() would. A rule without totals applies them
   // all. A rule with totals (needsTotals()) applies now what does not depend on them and appends to
-  // `deferred` the cells whose update does, such that applyPart(deferred, totals) later finishes
+  // `deferred` (cleared by the caller; its arrays sized by this call, as a writer of runs does) the
+  // runs of the cells whose update does, such that applyDeferred(deferred, totals) later finishes
   // the reading and occupiedFixedPoint(deferred) is these cells' share of the totals; the two parts
   // must touch separate state of a cell (or all of it be deferred), since the deferred part of a
-  // reading may be applied after the next readings' first parts. The default converts the runs to
-  // CellEvidence and applies (or defers) all of them.
-  virtual void applyRuns(const EvidenceRuns& runs, Grid& grid, Footprint* deferred) const;
+  // reading may be applied after the next readings' first parts. A deferring rule may leave
+  // `deferred`'s empty and probability arrays as they were, if its applyDeferred() reads only the
+  // occupied values. The default converts the runs to CellEvidence and applies them, or defers
+  // them all with their three values.
+  virtual void applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const;
+  // Finishes a reading's runs that applyRuns() deferred, given the totals of the whole reading. The
+  // default converts them to CellEvidence and calls applyPart().
+  virtual void applyDeferred(const EvidenceRuns& deferred, const FootprintTotals& totals,
+                             Grid& grid) const;
 
   virtual double occupancy(const Grid& grid, std::size_t cell) const = 0;  // p(occupied), [0, 1]
   virtual double native(const Grid& grid, std::size_t cell) const = 0;
