@@ -23,6 +23,7 @@
 #include <cstring>
 #include <memory>
 #include <new>
+#include <span>
 #include <stdexcept>
 #include <type_traits>
 #include <vector>
@@ -189,6 +190,18 @@ class Grid {
 
   // markWritten() of one cell.
   void markWritten(std::uint32_t cell) { marks_[cell] = kObserved | kWritten; }
+
+  // markWritten() of the listed cells (any cells, in any order), from any number of threads at
+  // once, lists that share cells too: each mark is a relaxed atomic store of the one value, a
+  // plain byte store on x86. While threads mark this way, nothing else may touch the marks.
+  // (Mapper::integrateDirect marks a chunk's cells on the thread that lists them, ahead of the
+  // thread that folds them in.)
+  void markWrittenShared(std::span<const std::uint32_t> cells) {
+    std::uint8_t* const marks = marks_.data();
+    for (const std::uint32_t c : cells)
+      std::atomic_ref<std::uint8_t>(marks[c]).store(kObserved | kWritten,
+                                                    std::memory_order_relaxed);
+  }
 
   // markWritten() for `count` consecutive cells from `cell` (a run, footprint.h).
   void markWritten(std::uint32_t cell, int count) {

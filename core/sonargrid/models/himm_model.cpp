@@ -210,10 +210,11 @@ bool HimmModel::listDirect(const Beam* beams, std::size_t count, const GridSpec&
 }
 
 bool HimmModel::applyDirect(const DirectCells& list, const UpdateRule& rule, Grid& grid) const {
-  // A one-byte rule says what each kind of cell does to every value a cell can hold: the axis
-  // cells then take a table look-up each. Any other rule that takes one value for many cells
-  // (UpdateRule::applyUniform) gets a reading's free cells in one call and its echo's cell in
-  // another. The cells of one reading are distinct, so their order within it does not matter.
+  // The marks are the caller's (SensorModel::applyDirect). A one-byte rule says what each kind of
+  // cell does to every value a cell can hold: the axis cells then take a table look-up each. Any
+  // other rule that takes one value for many cells (UpdateRule::applyUniform) gets a reading's free
+  // cells in one call and its echo's cell in another. The cells of one reading are distinct, so
+  // their order within it does not matter.
   const CellEvidence free = freeEvidence(), hit = hitEvidence();
   std::array<std::uint8_t, 256> freeStep{}, hitStep{};
   const bool bytes = rule.byteTransition(free, freeStep) && rule.byteTransition(hit, hitStep);
@@ -233,7 +234,6 @@ bool HimmModel::applyDirect(const DirectCells& list, const UpdateRule& rule, Gri
       rule.applyUniform(free, cells.first(frees), grid);
       if (frees < cells.size()) rule.applyUniform(hit, cells.subspan(frees), grid);
     }
-    for (const std::uint32_t c : cells) grid.markWritten(c);
     begin = list.ends[k];
   }
   return true;
