@@ -348,6 +348,25 @@ std::unique_ptr<UpdateRule> configuredRule(const QString& name) {
   return r;
 }
 
+// Appends `c` to one reading's runs (its three values; the run itself is the caller's) and to the
+// footprint that is their oracle.
+void appendCell(const CellEvidence& c, EvidenceRuns& runs, Footprint& footprint) {
+  runs.empty.push_back(c.empty);
+  runs.occupied.push_back(c.occupied);
+  runs.probability.push_back(c.probability);
+  footprint.cells.push_back(c);
+}
+
+// The values past the last run that the kernels' last lanes may read, up to seven (cone_model.h
+// pads for them).
+void padRuns(EvidenceRuns& runs) {
+  for (int k = 0; k < 7; ++k) {
+    runs.empty.push_back(0.0f);
+    runs.occupied.push_back(0.0f);
+    runs.probability.push_back(0.5f);
+  }
+}
+
 }  // namespace
 
 void TstFusedRuns::uniformGivesApplysBits_data() {
@@ -437,20 +456,12 @@ void TstFusedRuns::runsGiveApplysBits() {
       for (int k = 0; k < count; ++k, ++v) {
         CellEvidence c = kinds[(v * 7) % kKinds];  // 7 is prime to the 11 kinds
         c.cell = cell + static_cast<std::uint32_t>(k);
-        runs.empty.push_back(c.empty);
-        runs.occupied.push_back(c.occupied);
-        runs.probability.push_back(c.probability);
-        footprint.cells.push_back(c);
+        appendCell(c, runs, footprint);
       }
       cell += static_cast<std::uint32_t>(count) + 1;  // a cell left out between runs
     }
     QVERIFY(cell <= kCells);
-    // The kernels' last lanes may read up to seven values past a run (cone_model.h pads for them).
-    for (int k = 0; k < 7; ++k) {
-      runs.empty.push_back(0.0f);
-      runs.occupied.push_back(0.0f);
-      runs.probability.push_back(0.5f);
-    }
+    padRuns(runs);
     Grid oracle = preparedGrid(*r, kCells), viaRuns = preparedGrid(*r, kCells);
     r->apply(footprint, oracle);
     EvidenceRuns deferred;
@@ -503,19 +514,12 @@ void TstFusedRuns::deferredRunsGiveApplysBits() {
         nonZero += arc ? 1 : 0;
         CellEvidence c(cell + static_cast<std::uint32_t>(k), arc ? 0.0 : 0.3, 0.0, 0.5);
         c.occupied = o;
-        runs.empty.push_back(c.empty);
-        runs.occupied.push_back(c.occupied);
-        runs.probability.push_back(c.probability);
-        footprint.cells.push_back(c);
+        appendCell(c, runs, footprint);
       }
       cell += static_cast<std::uint32_t>(count) + 1;
     }
     QVERIFY(cell <= kCells);
-    for (int k = 0; k < 7; ++k) {
-      runs.empty.push_back(0.0f);
-      runs.occupied.push_back(0.0f);
-      runs.probability.push_back(0.5f);
-    }
+    padRuns(runs);
     Grid oracle = preparedGrid(*r, kCells), viaRuns = preparedGrid(*r, kCells);
     r->apply(footprint, oracle);
     EvidenceRuns deferred;
