@@ -362,7 +362,8 @@ bool Mapper::integrateDirect(const std::vector<Beam>& beams, const std::atomic<b
   const std::size_t chunks = (n + kDirectChunk - 1) / kDirectChunk;
   // The lister marks its cells written too (the marks are one value, so in any order), which
   // takes that share of the work off the one thread that folds in (himm × dempster-shafer, whose
-  // folding in is the slower side).
+  // folding in is the slower side). A cancelled or failed run may so leave marks on cells of
+  // chunks listed but not folded in: its grid is unfinished anyway (mapDataset()).
   auto list = [&](std::size_t c, DirectCells& cells) {
     cells.clear();
     const std::size_t begin = c * kDirectChunk;

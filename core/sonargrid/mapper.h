@@ -131,7 +131,7 @@ class Mapper {
   // `rotation` is robot.rotation(), computed once a scan for its readings.
   Beam beamOf(const Pose2D& robot, const Eigen::Matrix2d& rotation, const Reading& reading) const;
   void applyFootprint(const Footprint& footprint);
-  // The rule's applyRuns() (its deferred cells to `deferred`), and the runs' cells marked observed.
+  // The rule's applyRuns() (its deferred runs to `deferred`), and the runs' cells marked observed.
   // Several threads may apply runs in disjoint rows at once.
   void applyRuns(const EvidenceRuns& runs, EvidenceRuns* deferred);
   void markObserved(const Footprint& footprint) { grid_.markWritten(footprint); }

@@ -478,7 +478,9 @@ void TstFusedRuns::deferredRunsGiveApplysBits() {
   // scales by the reading's total. Against apply() of the same cells, which sums the whole
   // footprint itself. The runs hold spans that start and end inside, zeros within a span, whole
   // runs of zeros (one longer than the eight values tested at a time), ±0, a negative value
-  // (which counts in the total), NaN (which counts 0), and runs of 1 to 19 cells.
+  // (which counts in the total), NaN (which counts 0), a denormal, runs of 1 to 19 cells, and a
+  // span of 7 (its last cells in the kernel's tail lanes). One `deferred` serves all five
+  // readings, cleared between them as the mapper clears it, so later ones meet the values left.
   const std::unique_ptr<UpdateRule> r = makeUpdateRule("addition");
   r->configure(ParameterSet(r->info().parameters));  // normalise = 1, the default
   QVERIFY(r->needsTotals());
@@ -497,7 +499,12 @@ void TstFusedRuns::deferredRunsGiveApplysBits() {
       {nan, 0.0f, 0.0f},
       {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.1f, 0.9f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f,
        0.0f, 0.0f, 0.0f, 0.0f},
+      {0.3f, 0.0f, 0.0f, 1e-40f, 0.0f, 0.0f, 0.2f},
   };
+  // The cells' values before: made by the rule without normalising, so that the occupied plane
+  // holds values other than 0 and 1 (normalised, a one-cell footprint's evidence scales to 1).
+  const std::unique_ptr<UpdateRule> preparing = configuredRule("addition");
+  EvidenceRuns deferred;
   for (std::uint32_t shift = 0; shift < 5; ++shift) {
     EvidenceRuns runs;
     Footprint footprint;
@@ -520,19 +527,19 @@ void TstFusedRuns::deferredRunsGiveApplysBits() {
     }
     QVERIFY(cell <= kCells);
     padRuns(runs);
-    Grid oracle = preparedGrid(*r, kCells), viaRuns = preparedGrid(*r, kCells);
+    Grid oracle = preparedGrid(*preparing, kCells), viaRuns = preparedGrid(*preparing, kCells);
     r->apply(footprint, oracle);
-    EvidenceRuns deferred;
+    deferred.clear();
     r->applyRuns(runs, viaRuns, &deferred);
-    // The spans, counted by hand from occupiedOf: runs 2, 3, 4, 6, 7, 8, 9 and 10 have one, of
-    // 1, 1, 3, 1, 1, 4, 1 and 2 cells (14); the 11 values other than ±0 (NaN and −0.1 among
-    // them) lie in them, with 3 zeros between.
-    QCOMPARE(deferred.runs.size(), std::size_t{8});
+    // The spans, counted by hand from occupiedOf: runs 2, 3, 4, 6, 7, 8, 9, 10 and 11 have one,
+    // of 1, 1, 3, 1, 1, 4, 1, 2 and 7 cells (21); the 14 values other than ±0 (NaN, −0.1 and the
+    // denormal among them) lie in them, with 7 zeros between.
+    QCOMPARE(deferred.runs.size(), std::size_t{9});
     std::size_t deferredCells = 0;
     for (const EvidenceRuns::Run& run : deferred.runs)
       deferredCells += static_cast<std::size_t>(run.count);
-    QCOMPARE(deferredCells, std::size_t{14});
-    QCOMPARE(nonZero, std::size_t{11});
+    QCOMPARE(deferredCells, std::size_t{21});
+    QCOMPARE(nonZero, std::size_t{14});
     QCOMPARE(occupiedFixedPoint(deferred), occupiedFixedPoint(footprint));
     r->applyDeferred(deferred, FootprintTotals{occupiedFixedPoint(deferred)}, viaRuns);
     QVERIFY2(sameGrid("addition", oracle, viaRuns),

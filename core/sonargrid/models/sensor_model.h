@@ -77,8 +77,9 @@ class SensorModel {
   // path without footprints: listDirect() appends the cells of beams[0, count) to `out`
   // (DirectCells, footprint.h), on any thread; applyDirect() folds such a list into `grid` as
   // footprint() and `rule`.apply() would, one beam after another, to the same bits, and the caller
-  // marks the list's cells written (Grid::markWritten, in any order: a mark is one value, so the
-  // lister may mark them ahead of the fold). applyDirect() returns false, having done nothing, when
+  // marks the list's cells written (Grid::markWritten, or Grid::markWrittenShared where several
+  // threads mark; in any order: a mark is one value, so the lister may mark them ahead of the
+  // fold). applyDirect() returns false, having done nothing, when
   // the model has no such path for the rule, and listDirect() when the model has none at all (these
   // defaults): the mapper then goes through footprints. With several threads the mapper lists the
   // next readings' cells on one while another folds the earlier ones in, in order
@@ -91,9 +92,10 @@ class SensorModel {
                            Grid& /*grid*/) const {
     return false;
   }
-  // The two fused, each cell folded in as it is traced (the mapper's path on one thread, where a
-  // list only costs): false, having done nothing, where the model has no such path for the rule
-  // (this default; HIMM's axis has one for a one-byte rule), and then the mapper lists and folds.
+  // The two fused, each cell folded in and marked written as it is traced (the mapper's path on
+  // one thread, where a list only costs; unlike applyDirect(), this one marks): false, having done
+  // nothing, where the model has no such path for the rule (this default; HIMM's axis has one for
+  // a one-byte rule), and then the mapper lists and folds.
   virtual bool integrateDirect(const Beam* /*beams*/, std::size_t /*count*/,
                                const UpdateRule& /*rule*/, Grid& /*grid*/) const {
     return false;

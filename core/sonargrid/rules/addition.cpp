@@ -76,9 +76,11 @@ void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns*
     while (hi - 8 >= lo && zeros(occupied + hi - 8)) hi -= 8;
     while (occupied[hi - 1] == 0.0f) --hi;  // stops at lo at the latest
     const auto count = static_cast<std::size_t>(hi - lo);
-    // Three values of room past the span: the lanes read four from a run's start (run_kernels).
+    // Three values of room past the span, zeros, which the lanes read from a short run's start
+    // and throw away (run_kernels).
     if (deferred->occupied.size() < used + count + 3) deferred->occupied.resize(used + count + 3);
     std::copy_n(occupied + lo, count, deferred->occupied.data() + used);
+    std::fill_n(deferred->occupied.data() + used + count, 3, 0.0f);
     deferred->runs.push_back(
         {run.cell + static_cast<std::uint32_t>(lo), hi - lo, static_cast<std::uint32_t>(used)});
     used += count;

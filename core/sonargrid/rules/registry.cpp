@@ -73,7 +73,8 @@ Compatibility compatibility(const std::string& model, const std::string& rule) {
 
 void UpdateRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const {
   if (needsTotals()) {
-    // Every run deferred as it is, its values copied after those deferred before.
+    // Every run deferred as it is, its values copied after those deferred before (no room past
+    // them: the default applyDeferred() reads them one at a time).
     std::size_t used = 0;
     for (const EvidenceRuns::Run& run : deferred->runs)
       used = std::max(used, run.first + static_cast<std::size_t>(run.count));

@@ -118,13 +118,15 @@ class UpdateRule {
   // hands its cells over as runs), each cell as apply() would. A rule without totals applies them
   // all. A rule with totals (needsTotals()) applies now what does not depend on them and appends to
   // `deferred` (cleared by the caller; its arrays sized by this call, as a writer of runs does) the
-  // runs of the cells whose update does, such that applyDeferred(deferred, totals) later finishes
-  // the reading and occupiedFixedPoint(deferred) is these cells' share of the totals; the two parts
-  // must touch separate state of a cell (or all of it be deferred), since the deferred part of a
-  // reading may be applied after the next readings' first parts. A deferring rule may leave
-  // `deferred`'s empty and probability arrays as they were, if its applyDeferred() reads only the
-  // occupied values. The default converts the runs to CellEvidence and applies them, or defers
-  // them all with their three values.
+  // runs of the cells whose update does (they may take in cells that the deferred update leaves
+  // as they are), such that applyDeferred(deferred, totals) later finishes the reading and
+  // occupiedFixedPoint(deferred) is these cells' share of the totals; the two parts must touch
+  // separate state of a cell (or all of it be deferred), since the deferred part of a reading may
+  // be applied after the next readings' first parts. `deferred` may be null for a rule without
+  // totals. A deferring rule may leave `deferred`'s empty and probability arrays as they were, if
+  // its applyDeferred() reads only the occupied values: so a rule overrides both or neither. The
+  // default converts the runs to CellEvidence and applies them, or defers them all with their
+  // three values.
   virtual void applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const;
   // Finishes a reading's runs that applyRuns() deferred, given the totals of the whole reading. The
   // default converts them to CellEvidence and calls applyPart().
