@@ -94,6 +94,11 @@ struct EvidenceRuns {
   std::vector<Run> runs;
   std::vector<float, UninitialisedAllocator<float>> empty, occupied, probability;
   void clear() { runs.clear(); }
+  // One past the last run's values: where a writer appends the next run's (runs are appended in
+  // order of their values; 0 with no runs).
+  std::size_t valuesEnd() const {
+    return runs.empty() ? 0 : runs.back().first + static_cast<std::size_t>(runs.back().count);
+  }
 };
 
 // The grid rows a footprint is restricted to: those of [begin, end) in stripes of `stripe` rows,

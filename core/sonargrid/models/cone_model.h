@@ -221,7 +221,7 @@ template <class Shape>
 void coneRuns(const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid,
               const BeamTables& tables, RowWindow window, EvidenceRuns& out) {
   if (!pb.active) return;
-  std::size_t next = out.runs.empty() ? 0 : out.runs.back().first + out.runs.back().count;
+  std::size_t next = out.valuesEnd();
   constexpr int kMaxWidth = 8;
   thread_local std::vector<std::int32_t> kept;  // a mask per cell of a row
 #ifdef SG_WIDE_LANES

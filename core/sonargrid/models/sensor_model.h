@@ -79,11 +79,10 @@ class SensorModel {
   // footprint() and `rule`.apply() would, one beam after another, to the same bits, and the caller
   // marks the list's cells written (Grid::markWritten, or Grid::markWrittenShared where several
   // threads mark; in any order: a mark is one value, so the lister may mark them ahead of the
-  // fold). applyDirect() returns false, having done nothing, when
-  // the model has no such path for the rule, and listDirect() when the model has none at all (these
-  // defaults): the mapper then goes through footprints. With several threads the mapper lists the
-  // next readings' cells on one while another folds the earlier ones in, in order
-  // (Mapper::integrateDirect).
+  // fold). applyDirect() returns false, having done nothing, when the model has no such path for
+  // the rule, and listDirect() when the model has none at all (these defaults): the mapper then
+  // goes through footprints. With several threads the mapper lists the next readings' cells on one
+  // while another folds the earlier ones in, in order (Mapper::integrateDirect).
   virtual bool listDirect(const Beam* /*beams*/, std::size_t /*count*/, const GridSpec& /*grid*/,
                           DirectCells& /*out*/) const {
     return false;

@@ -61,8 +61,7 @@ void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns*
   // time are first tested for being all zero (the vector == holds for ±0 and not for NaN or
   // denormals, as the scalar == does; nothing in the program sets the CPU to treat denormals as
   // zero).
-  std::size_t used = 0;
-  if (!deferred->runs.empty()) used = deferred->runs.back().first + deferred->runs.back().count;
+  std::size_t used = deferred->valuesEnd();
   auto zeros = [](const float* p) {
     const lanes::Floats lo = lanes::load(p), hi = lanes::load(p + 4);
     return lanes::all((lo == lanes::Floats{}) & (hi == lanes::Floats{}));

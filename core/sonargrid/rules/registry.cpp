@@ -75,9 +75,7 @@ void UpdateRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* d
   if (needsTotals()) {
     // Every run deferred as it is, its values copied after those deferred before (no room past
     // them: the default applyDeferred() reads them one at a time).
-    std::size_t used = 0;
-    for (const EvidenceRuns::Run& run : deferred->runs)
-      used = std::max(used, run.first + static_cast<std::size_t>(run.count));
+    std::size_t used = deferred->valuesEnd();
     for (const EvidenceRuns::Run& run : runs.runs) {
       const auto count = static_cast<std::size_t>(run.count);
       for (auto* values : {&deferred->empty, &deferred->occupied, &deferred->probability})
