@@ -155,8 +155,13 @@ void forEachConeRow(const Pose2D& sensor, double reach, double halfAngle, const 
   const BeamTables::Entry* t = tables.table(qx, qy);
   const int side = tables.side();
   const float reachF = static_cast<float>(reach);
+  // The per-cell test. Where |bearing − heading| <= halfAngle already, the turn is 0 (and adding
+  // 0.0 changes no bit that abs() keeps), so the test stands; only the other cells, most of them
+  // rejected, pay for the turn.
   auto accepts = [&](const BeamTables::Entry& e) {
-    return e.distance <= reachF && std::abs(detail::offAxis(e.bearing, h)) <= halfAngle;
+    if (!(e.distance <= reachF)) return false;
+    const double raw = static_cast<double>(e.bearing) - h;
+    return std::abs(raw) <= halfAngle || std::abs(raw + detail::turn(raw)) <= halfAngle;
   };
   // The table is megabytes and a reading touches a few thousand bytes of it, scattered over its
   // rows: ask for all of them before the first is needed, so the misses overlap instead of
