@@ -130,7 +130,7 @@ struct LaneTypes<lanes::kWideWidth> {
 
 // coneRow() side by side instead of as CellEvidence, appended to `out` from value index `next`
 // (which it advances): the same formula per lane, the same values, no 4 × 4 transpose; in W = 4
-// lanes, or 8 (coneRowRunsWide). The row is one run unless a lane at the edge of a region writes
+// lanes, or 8 (coneRunsWide). The row is one run unless a lane at the edge of a region writes
 // nothing. `out`'s arrays have room for W − 1 values past the row, and `kept` for a mask per cell
 // and W − 1 more.
 template <class Shape, int W>
@@ -201,14 +201,43 @@ template <class Shape, int W>
   }
 }
 
+// coneRuns() in W lanes: the rasteriser and the rows' evaluation in one function, so that the
+// shape's values are set up in lanes once a reading rather than once a row.
+template <class Shape, int W>
+[[gnu::always_inline]] inline void coneRunsIn(const ConeBeam<Shape>& pb, const Beam& beam,
+                                              const GridSpec& grid, const BeamTables& tables,
+                                              RowWindow window, EvidenceRuns& out) {
+  static_assert(std::is_trivially_copyable_v<Shape>);
+  const Shape shape = pb.shape;  // a local: the rows' stores cannot alias it
+  std::size_t next = out.valuesEnd();
+  thread_local std::vector<std::int32_t> kept;  // a mask per cell of a row
+  forEachConeRow(
+      beam.sensor, pb.reach, pb.halfAngle, grid, tables,
+      [&](std::size_t bound) {
+        // Leaves new values unwritten (UninitialisedAllocator); the last lanes of a row may write
+        // up to W − 1 values past its end.
+        const std::size_t need = next + bound + W;
+        if (out.empty.size() < need) {
+          out.empty.resize(need);
+          out.occupied.resize(need);
+          out.probability.resize(need);
+        }
+        if (kept.size() < bound + W) kept.resize(bound + W);
+      },
+      [&](const ConeRow& row)
+          SG_ROW_INLINE { coneRowRuns<Shape, W>(shape, row, out, next, kept.data()); },
+      window);
+}
+
 #ifdef SG_WIDE_LANES
-// coneRowRuns() in eight lanes, built for AVX2 (without FMA, so every lane does what the four-lane
-// build does); called only where the CPU has AVX2 (coneRuns).
+// coneRuns() in eight lanes, built for AVX2 (without FMA, so every lane does what the four-lane
+// build does, and the rasteriser's scalar arithmetic gives the same bits); called only where the
+// CPU has AVX2.
 template <class Shape>
-__attribute__((target("avx2"))) void coneRowRunsWide(const Shape& shape, const ConeRow& row,
-                                                     EvidenceRuns& out, std::size_t& next,
-                                                     std::int32_t* kept) {
-  coneRowRuns<Shape, lanes::kWideWidth>(shape, row, out, next, kept);
+__attribute__((target("avx2"))) void coneRunsWide(const ConeBeam<Shape>& pb, const Beam& beam,
+                                                  const GridSpec& grid, const BeamTables& tables,
+                                                  RowWindow window, EvidenceRuns& out) {
+  coneRunsIn<Shape, lanes::kWideWidth>(pb, beam, grid, tables, window, out);
 }
 #endif
 
@@ -221,32 +250,10 @@ template <class Shape>
 void coneRuns(const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid,
               const BeamTables& tables, RowWindow window, EvidenceRuns& out) {
   if (!pb.active) return;
-  std::size_t next = out.valuesEnd();
-  constexpr int kMaxWidth = 8;
-  thread_local std::vector<std::int32_t> kept;  // a mask per cell of a row
 #ifdef SG_WIDE_LANES
-  const bool wide = wideConeLanes();
+  if (wideConeLanes()) return coneRunsWide(pb, beam, grid, tables, window, out);
 #endif
-  forEachConeRow(
-      beam.sensor, pb.reach, pb.halfAngle, grid, tables,
-      [&](std::size_t bound) {
-        // Leaves new values unwritten (UninitialisedAllocator); the last lanes of a row may write
-        // up to kMaxWidth − 1 values past its end.
-        const std::size_t need = next + bound + kMaxWidth;
-        if (out.empty.size() < need) {
-          out.empty.resize(need);
-          out.occupied.resize(need);
-          out.probability.resize(need);
-        }
-        if (kept.size() < bound + kMaxWidth) kept.resize(bound + kMaxWidth);
-      },
-      [&](const ConeRow& row) {
-#ifdef SG_WIDE_LANES
-        if (wide) return coneRowRunsWide(pb.shape, row, out, next, kept.data());
-#endif
-        coneRowRuns<Shape, lanes::kWidth>(pb.shape, row, out, next, kept.data());
-      },
-      window);
+  coneRunsIn<Shape, lanes::kWidth>(pb, beam, grid, tables, window, out);
 }
 
 // The footprint of one reading: the cone's rows, evaluated in lanes.
