@@ -152,10 +152,11 @@ template <class Shape, int W>
   float* const probability = out.probability.data() + next;
   using F = typename LaneTypes<W>::Floats;
   using I = typename LaneTypes<W>::Ints;
-  I lane;
+  I lane;  // each lane's cell in the row: k + j
   for (int j = 0; j < W; ++j) lane[j] = j;
+  const I last = I{} + (count - 1);
   I every = I{} - 1;  // every lane set
-  for (int k = 0; k < count; k += W) {
+  for (int k = 0; k < count; k += W, lane += W) {
     const BeamTables::Entry* e = entries + k;
     F lo, hi;
     std::memcpy(&lo, &e[0].distance, sizeof lo);
@@ -173,7 +174,7 @@ template <class Shape, int W>
     std::memcpy(occupied + k, &v.pO, sizeof v.pO);
     std::memcpy(probability + k, &v.p, sizeof v.p);
     // Which lanes the reading writes (lanes past the row's end count as written: cut off).
-    const I keep = v.occupied | v.empty | (lane >= count - k);
+    const I keep = v.occupied | v.empty | (lane > last);
     std::memcpy(kept + k, &keep, sizeof keep);
     every &= keep;
   }
