@@ -212,7 +212,8 @@ template <class Shape, int W>
   const Shape shape = pb.shape;  // a local: the rows' stores cannot alias it
   std::size_t next = out.valuesEnd();
   thread_local std::vector<std::int32_t> kept;  // a mask per cell of a row
-  forEachConeRow(
+  // Eight lanes are built for AVX2, which rounds in one instruction.
+  forEachConeRow<W == 8>(
       beam.sensor, pb.reach, pb.halfAngle, grid, tables,
       [&](std::size_t bound) {
         // Leaves new values unwritten (UninitialisedAllocator); the last lanes of a row may write

@@ -40,12 +40,18 @@ inline void clip(double a, double b, double& lo, double& hi) {
     hi = -std::numeric_limits<double>::infinity();
 }
 
-// floor and ceil to int for |x| < 2³¹ (std::floor is a library call on baseline x86-64).
+// floor and ceil to int for |x| < 2³¹. std::floor is a library call on baseline x86-64, so by
+// default they correct a truncation; with kRound, for code built where the CPU rounds in one
+// instruction (SSE4.1, as in coneRunsWide), they round. Both give the same integer.
+template <bool kRound = false>
 inline int floorToInt(double x) {
+  if constexpr (kRound) return static_cast<int>(std::floor(x));
   const int i = static_cast<int>(x);
   return i - (static_cast<double>(i) > x ? 1 : 0);
 }
+template <bool kRound = false>
 inline int ceilToInt(double x) {
+  if constexpr (kRound) return static_cast<int>(std::ceil(x));
   const int i = static_cast<int>(x);
   return i + (static_cast<double>(i) < x ? 1 : 0);
 }
@@ -88,7 +94,7 @@ struct ConeRow {
 // row, reserve(bound) is told how many cells there can be at most.
 // Always inlined: coneRuns() builds it into a function for AVX2, where a call to a copy built
 // for the baseline would evaluate the rows' eight lanes without AVX.
-template <class Reserve, class RowFn>
+template <bool kRound = false, class Reserve, class RowFn>
 [[gnu::always_inline]] inline void forEachConeRow(const Pose2D& sensor, double reach,
                                                   double halfAngle, const GridSpec& grid,
                                                   const BeamTables& tables, Reserve&& reserve,
@@ -147,8 +153,8 @@ template <class Reserve, class RowFn>
     detail::clip(-d2y, -d2x * y + kSlack, lo, hi);
     if (!(lo <= hi)) return;
     // Cell dx has its centre at x = dx + 0.5 - ax; lo and hi are within ±(R + kSlack).
-    const int dx0 = std::max({-r, detail::ceilToInt(lo - 0.5 + ax), -iu});
-    const int dx1 = std::min({r, detail::floorToInt(hi - 0.5 + ax), grid.width - 1 - iu});
+    const int dx0 = std::max({-r, detail::ceilToInt<kRound>(lo - 0.5 + ax), -iu});
+    const int dx1 = std::min({r, detail::floorToInt<kRound>(hi - 0.5 + ax), grid.width - 1 - iu});
     if (dx0 > dx1) return;
     spans.push_back(ConeSpan{dy, dx0, dx1});
     bound += static_cast<std::size_t>(dx1 - dx0 + 1);
