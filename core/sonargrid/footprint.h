@@ -84,7 +84,9 @@ struct DirectCells {
 // (Mapper::integrateBeams without an observer), where a Footprint would be written and read back
 // once per cell. Run r is cells r.cell .. r.cell + r.count − 1, their values at [r.first,
 // r.first + r.count) of the three arrays; the cells and values are those the Footprint would hold,
-// in the same order. The arrays are sized by the writer, with room for lanes past the last run.
+// in the same order. The arrays are sized by the writer, with room for kRunPadding values past the
+// last run, which a rule's lanes may read (and ignore) from a short run's start.
+inline constexpr std::size_t kRunPadding = 7;
 struct EvidenceRuns {
   struct Run {
     std::uint32_t cell;

@@ -428,14 +428,15 @@ void TstFusedRuns::runsGiveApplysBits_data() {
 }
 
 void TstFusedRuns::runsGiveApplysBits() {
-  // One reading's runs of every length around the kernels' four lanes, each cell with its own
+  // One reading's runs of every length around the kernels' four lanes and Dempster–Shafer's eight
+  // (up to two groups of eight and a tail of seven), each cell with its own
   // evidence: of one kind as the cone models give it, of both kinds at once (Dempster–Shafer's
   // general case, which no model gives), none, certain, out of [0, 1] and NaN; against apply() of
   // the same cells in the same order.
   QFETCH(QString, rule);
   const std::unique_ptr<UpdateRule> r = configuredRule(rule);
   QVERIFY(!r->needsTotals());
-  constexpr std::uint32_t kCells = 96;
+  constexpr std::uint32_t kCells = 136;
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const CellEvidence kinds[] = {CellEvidence(0, 0.6, 0.0, 0.2),  CellEvidence(0, 0.0, 0.8, 0.9),
                                 CellEvidence(0, 0.3, 0.4, 0.55), CellEvidence(0, 0.0, 0.0, 0.5),
@@ -451,7 +452,7 @@ void TstFusedRuns::runsGiveApplysBits() {
     Footprint footprint;
     std::uint32_t cell = 1 + shift;
     std::size_t v = 0;
-    for (const int count : {1, 2, 3, 4, 5, 6, 7, 8, 9, 19}) {
+    for (const int count : {1, 2, 3, 4, 5, 6, 7, 8, 9, 15, 16, 17, 19}) {
       runs.runs.push_back(EvidenceRuns::Run{cell, count, static_cast<std::uint32_t>(v)});
       for (int k = 0; k < count; ++k, ++v) {
         CellEvidence c = kinds[(v * 7) % kKinds];  // 7 is prime to the 11 kinds

@@ -217,8 +217,9 @@ template <class Shape, int W>
       beam.sensor, pb.reach, pb.halfAngle, grid, tables,
       [&](std::size_t bound) {
         // Leaves new values unwritten (UninitialisedAllocator); the last lanes of a row may write
-        // up to W − 1 values past its end.
-        const std::size_t need = next + bound + W;
+        // up to W − 1 values past its end, and a rule's lanes read up to kRunPadding past the last
+        // run (footprint.h).
+        const std::size_t need = next + bound + std::max<std::size_t>(W, kRunPadding);
         if (out.empty.size() < need) {
           out.empty.resize(need);
           out.occupied.resize(need);

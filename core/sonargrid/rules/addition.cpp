@@ -75,11 +75,12 @@ void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns*
     while (hi - 8 >= lo && zeros(occupied + hi - 8)) hi -= 8;
     while (occupied[hi - 1] == 0.0f) --hi;  // stops at lo at the latest
     const auto count = static_cast<std::size_t>(hi - lo);
-    // Three values of room past the span, zeros, which the lanes read from a short run's start
-    // and throw away (run_kernels).
-    if (deferred->occupied.size() < used + count + 3) deferred->occupied.resize(used + count + 3);
+    // kRunPadding values of room past the span, zeros, which the lanes read from a short run's
+    // start and throw away (footprint.h, run_kernels).
+    const std::size_t room = used + count + kRunPadding;
+    if (deferred->occupied.size() < room) deferred->occupied.resize(room);
     std::copy_n(occupied + lo, count, deferred->occupied.data() + used);
-    std::fill_n(deferred->occupied.data() + used + count, 3, 0.0f);
+    std::fill_n(deferred->occupied.data() + used + count, kRunPadding, 0.0f);
     deferred->runs.push_back(
         {run.cell + static_cast<std::uint32_t>(lo), hi - lo, static_cast<std::uint32_t>(used)});
     used += count;

@@ -97,7 +97,8 @@ template <std::size_t Bytes>
 // than W is updated on a copy padded with its first cell. The values past a run that the padding
 // lanes read are ignored. The values are those of `runs`' arrays, or, with `occupiedOnly`, of its
 // occupied array alone (all three pointers point into it; a deferred run's, UpdateRule::applyRuns).
-template <class Cell, class Group>
+// G, the cells a group takes, is W unless a kernel asks for more (Dempster–Shafer's float lanes).
+template <int G = W, class Cell, class Group>
 [[gnu::always_inline]] inline void eachGroup(const EvidenceRuns& runs, Cell* plane, Group&& group,
                                              bool occupiedOnly = false) {
   const float* const occupied = runs.occupied.data();
@@ -107,19 +108,19 @@ template <class Cell, class Group>
     Cell* const cells = plane + run.cell;
     const std::size_t v = run.first;
     const int n = run.count;
-    Cell last[W];
-    if (n < W) {
-      for (int j = 0; j < W; ++j) last[j] = cells[j < n ? j : 0];
+    Cell last[G];
+    if (n < G) {
+      for (int j = 0; j < G; ++j) last[j] = cells[j < n ? j : 0];
       group(empty + v, occupied + v, probability + v, last);
       for (int j = 0; j < n; ++j) cells[j] = last[j];
       continue;
     }
-    const int tail = n % W == 0 ? -1 : n - W;  // the first of the last W cells, when apart
+    const int tail = n % G == 0 ? -1 : n - G;  // the first of the last G cells, when apart
     if (tail >= 0) {
       copyLanes<sizeof last>(last, cells + tail);
       group(empty + v + tail, occupied + v + tail, probability + v + tail, last);
     }
-    for (int k = 0; k + W <= n; k += W)
+    for (int k = 0; k + G <= n; k += G)
       group(empty + v + k, occupied + v + k, probability + v + k, cells + k);
     if (tail >= 0) copyLanes<sizeof last>(cells + tail, last);
   }
@@ -166,34 +167,45 @@ template <class Cell, class Lanes>
   });
 }
 
-// DempsterShaferCell::masses() and ::of() per lane, on four cells' a and b.
-using Ints = std::int32_t __attribute__((vector_size(4 * W)));
+// DempsterShaferCell::masses() and ::of() per lane, on four or eight cells' a and b (V: Floats or
+// Floats8), with I the int lanes of the same count.
+using Floats8 = float __attribute__((vector_size(32)));
+template <class V>
+using IntsOf = decltype(V{} < V{});
+template <class V>
 struct Masses {
-  Floats occ, emp, unk;
+  V occ, emp, unk;
 };
-[[gnu::always_inline]] inline Masses masses(Floats a, Floats b) {
-  const Ints occLeftOut = reinterpret_cast<Ints>(a) < 0;  // the sign bit
-  const Ints empLeftOut = reinterpret_cast<Ints>(b) < 0;
-  const Floats unk = occLeftOut ? -a : (empLeftOut ? -b : 1.0f - a - b);
+template <class V>
+[[gnu::always_inline]] inline Masses<V> masses(V a, V b) {
+  const IntsOf<V> occLeftOut = reinterpret_cast<IntsOf<V>>(a) < 0;  // the sign bit
+  const IntsOf<V> empLeftOut = reinterpret_cast<IntsOf<V>>(b) < 0;
+  const V unk = occLeftOut ? -a : (empLeftOut ? -b : 1.0f - a - b);
   return {occLeftOut ? 1.0f - unk - b : a, empLeftOut ? 1.0f - unk - a : b, unk};
 }
-[[gnu::always_inline]] inline Floats magnitude(Floats v) {
-  return reinterpret_cast<Floats>(reinterpret_cast<Ints>(v) & 0x7fffffff);
+template <class V>
+[[gnu::always_inline]] inline V magnitude(V v) {
+  return reinterpret_cast<V>(reinterpret_cast<IntsOf<V>>(v) & 0x7fffffff);
 }
-[[gnu::always_inline]] inline void cellsOf(const Masses& m, Floats& a, Floats& b) {
-  const Ints unkLeftOut = (m.unk >= m.occ) & (m.unk >= m.emp);
-  const Ints occLeftOut = ~unkLeftOut & (m.occ >= m.emp);
-  const Ints empLeftOut = ~(unkLeftOut | occLeftOut);
-  const Floats unk = -magnitude(m.unk);
+template <class V>
+[[gnu::always_inline]] inline void cellsOf(const Masses<V>& m, V& a, V& b) {
+  const IntsOf<V> unkLeftOut = (m.unk >= m.occ) & (m.unk >= m.emp);
+  const IntsOf<V> occLeftOut = ~unkLeftOut & (m.occ >= m.emp);
+  const IntsOf<V> empLeftOut = ~(unkLeftOut | occLeftOut);
+  const V unk = -magnitude(m.unk);
   a = occLeftOut ? unk : magnitude(m.occ);
   b = empLeftOut ? unk : magnitude(m.emp);
 }
-// Bit j set where lane j's sign bit is (movmskps, SSE: in every clone).
+// Bit j set where lane j's sign bit is (movmskps, SSE: in every clone; eight lanes as two fours).
 [[gnu::always_inline]] inline int signBits(Floats v) {
   return __builtin_ia32_movmskps(v);
 }
-[[gnu::always_inline]] inline Floats clampUnit(Floats v) {
-  return v < 0.0f ? Floats{} : (1.0f < v ? Floats{} + 1.0f : v);  // std::clamp(v, 0, 1)
+[[gnu::always_inline]] inline int signBits(Floats8 v) {
+  return signBits(Floats{v[0], v[1], v[2], v[3]}) | signBits(Floats{v[4], v[5], v[6], v[7]}) << 4;
+}
+template <class V>
+[[gnu::always_inline]] inline V clampUnit(V v) {
+  return v < 0.0f ? V{} : (1.0f < v ? V{} + 1.0f : v);  // std::clamp(v, 0, 1)
 }
 
 // Dempster's rule on four cells (a, b per lane) for the model's evidence per lane, as
@@ -201,39 +213,41 @@ struct Masses {
 // `shrink` the other. Lanes of total conflict keep their cells; lanes with both kinds (which no
 // model gives) are left as they were and set in the bits returned, for cellrule to do one at a
 // time.
-[[gnu::always_inline]] inline int dempsterShaferLanes(Floats occupied, Floats empty, Floats& a,
-                                                      Floats& b) {
-  const Floats o = clampUnit(occupied), e = clampUnit(empty);
-  const Ints onlyOccupied = e == 0.0f;
-  const Ints onlyEmpty = o == 0.0f;
-  const Ints general = ~(onlyOccupied | onlyEmpty);
-  const Floats x = onlyOccupied ? o : e;
+template <class V>
+[[gnu::always_inline]] inline int dempsterShaferLanes(V occupied, V empty, V& a, V& b) {
+  using I = IntsOf<V>;
+  constexpr int kAll = (1 << sizeof(V) / sizeof(float)) - 1;
+  const V o = clampUnit(occupied), e = clampUnit(empty);
+  const I onlyOccupied = e == 0.0f;
+  const I onlyEmpty = o == 0.0f;
+  const I general = ~(onlyOccupied | onlyEmpty);
+  const V x = onlyOccupied ? o : e;
   // Lanes where the mass x adds to is the one the cell leaves out (its sign bit): the other two are
   // a and b, and both scale by s. All four, the usual case: nothing else to do.
-  const Floats grownCell = onlyOccupied ? a : b;
-  if (signBits(grownCell) == 0xF && signBits(reinterpret_cast<Floats>(general)) == 0) {
-    const Floats denominator = 1.0f - (onlyOccupied ? b : a) * x;
-    const Floats s = (1.0f - x) * (1.0f / denominator);
-    const Ints keep = denominator <= 0.0f;  // total conflict
+  const V grownCell = onlyOccupied ? a : b;
+  if (signBits(grownCell) == kAll && signBits(reinterpret_cast<V>(general)) == 0) {
+    const V denominator = 1.0f - (onlyOccupied ? b : a) * x;
+    const V s = (1.0f - x) * (1.0f / denominator);
+    const I keep = denominator <= 0.0f;  // total conflict
     a = keep ? a : a * s;
     b = keep ? b : b * s;
     return 0;
   }
-  const Masses m = masses(a, b);
-  const Floats grow = onlyOccupied ? m.occ : m.emp;
-  const Floats shrink = onlyOccupied ? m.emp : m.occ;
-  const Floats denominator = 1.0f - shrink * x;
-  const Floats inv = 1.0f / denominator;
-  const Floats s = (1.0f - x) * inv;
-  const Floats grown = (grow + m.unk * x) * inv;
-  const Floats shrunk = shrink * s;
-  Floats newA, newB;
-  cellsOf({onlyOccupied ? grown : shrunk, onlyOccupied ? shrunk : grown, m.unk * s}, newA, newB);
-  const Ints scaled = reinterpret_cast<Ints>(grownCell) < 0;
-  const Ints keep = (denominator <= 0.0f) | general;
+  const Masses<V> m = masses(a, b);
+  const V grow = onlyOccupied ? m.occ : m.emp;
+  const V shrink = onlyOccupied ? m.emp : m.occ;
+  const V denominator = 1.0f - shrink * x;
+  const V inv = 1.0f / denominator;
+  const V s = (1.0f - x) * inv;
+  const V grown = (grow + m.unk * x) * inv;
+  const V shrunk = shrink * s;
+  V newA, newB;
+  cellsOf<V>({onlyOccupied ? grown : shrunk, onlyOccupied ? shrunk : grown, m.unk * s}, newA, newB);
+  const I scaled = reinterpret_cast<I>(grownCell) < 0;
+  const I keep = (denominator <= 0.0f) | general;
   a = keep ? a : (scaled ? a * s : newA);
   b = keep ? b : (scaled ? b * s : newB);
-  return signBits(reinterpret_cast<Floats>(general));
+  return signBits(reinterpret_cast<V>(general));
 }
 
 // Dempster–Shafer's general case, for a cell with both kinds of evidence (no cone model gives one):
@@ -325,29 +339,32 @@ SG_RUN_CLONES void logOdds(const EvidenceRuns& runs, LogOddsCell* plane, double 
                 });
 }
 
+// Eight cells at a time: Dempster–Shafer computes in float, so a group of eight is one AVX2
+// register a lane (two SSE registers in the baseline clone), as wide as the other kernels' four
+// doubles; a lane does what it did in four (tst_fused_runs, tst_rules).
 SG_RUN_CLONES void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* plane) {
-  eachGroup(runs, plane,
-            [](const float* empty, const float* occupied, const float*, DempsterShaferCell* cells)
-                SG_INLINE_LAMBDA {
-                  Floats o, e, lo, hi;  // lo, hi: a0 b0 a1 b1, a2 b2 a3 b3
-                  std::memcpy(&o, occupied, sizeof o);
-                  std::memcpy(&e, empty, sizeof e);
-                  std::memcpy(&lo, cells, sizeof lo);
-                  std::memcpy(&hi, cells + 2, sizeof hi);
-                  Floats a = __builtin_shufflevector(lo, hi, 0, 2, 4, 6);
-                  Floats b = __builtin_shufflevector(lo, hi, 1, 3, 5, 7);
-                  const int general = dempsterShaferLanes(o, e, a, b);
-                  lo = __builtin_shufflevector(a, b, 0, 4, 1, 5);
-                  hi = __builtin_shufflevector(a, b, 2, 6, 3, 7);
-                  std::memcpy(cells, &lo, sizeof lo);
-                  std::memcpy(cells + 2, &hi, sizeof hi);
-                  if (general != 0) {
-                    for (int j = 0; j < W; ++j) {
-                      if (general & (1 << j))
-                        generalDempsterShafer(occupied[j], empty[j], cells[j]);
-                    }
-                  }
-                });
+  constexpr int G = 8;
+  eachGroup<G>(runs, plane,
+               [](const float* empty, const float* occupied, const float*,
+                  DempsterShaferCell* cells) SG_INLINE_LAMBDA {
+                 Floats8 o, e, lo, hi;  // lo, hi: a0 b0 … a3 b3, a4 b4 … a7 b7
+                 std::memcpy(&o, occupied, sizeof o);
+                 std::memcpy(&e, empty, sizeof e);
+                 std::memcpy(&lo, cells, sizeof lo);
+                 std::memcpy(&hi, cells + 4, sizeof hi);
+                 Floats8 a = __builtin_shufflevector(lo, hi, 0, 2, 4, 6, 8, 10, 12, 14);
+                 Floats8 b = __builtin_shufflevector(lo, hi, 1, 3, 5, 7, 9, 11, 13, 15);
+                 const int general = dempsterShaferLanes(o, e, a, b);
+                 lo = __builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11);
+                 hi = __builtin_shufflevector(a, b, 4, 12, 5, 13, 6, 14, 7, 15);
+                 std::memcpy(cells, &lo, sizeof lo);
+                 std::memcpy(cells + 4, &hi, sizeof hi);
+                 if (general != 0) {
+                   for (int j = 0; j < G; ++j) {
+                     if (general & (1 << j)) generalDempsterShafer(occupied[j], empty[j], cells[j]);
+                   }
+                 }
+               });
 }
 
 SG_RUN_CLONES void logOddsUniform(float probability, std::span<const std::uint32_t> cells,
