@@ -6,8 +6,9 @@
 // widens them, and repeats cell_updates.h's operations in its order; a lane's `if` is a select of
 // the updated and the old value. Addition's single-precision cells are widened on load and rounded
 // to float on store, as cell_updates.h does one cell at a time. Dempster–Shafer computes in float,
-// as cell_updates.h does, in four float lanes; its cells with both kinds of evidence (which no
-// model gives) go through cell_updates.h itself, one at a time.
+// as cell_updates.h does, in eight float lanes for a run's cells and four for listed ones; its
+// cells with both kinds of evidence (which no model gives) go through cell_updates.h itself, one
+// at a time.
 #include "sonargrid/rules/run_kernels.h"
 
 #include <algorithm>
@@ -208,7 +209,7 @@ template <class V>
   return v < 0.0f ? V{} : (1.0f < v ? V{} + 1.0f : v);  // std::clamp(v, 0, 1)
 }
 
-// Dempster's rule on four cells (a, b per lane) for the model's evidence per lane, as
+// Dempster's rule on four or eight cells (a, b per lane) for the model's evidence per lane, as
 // cellrule::dempsterShafer's first two cases: one kind of evidence x, `grow` the mass x adds to,
 // `shrink` the other. Lanes of total conflict keep their cells; lanes with both kinds (which no
 // model gives) are left as they were and set in the bits returned, for cellrule to do one at a
