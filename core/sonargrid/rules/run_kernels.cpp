@@ -90,15 +90,16 @@ template <std::size_t Bytes>
   }
 }
 
-// group(empty, occupied, probability, cells) for every W consecutive cells of every run: W values
-// from each array, W cells to update in place. No lane touches a cell past its run (another
-// row's, perhaps another thread's): a run's last count mod W cells are updated as part of its last
-// W cells, computed on a copy of their values from before the run's other groups (so that the
-// cells both cover get the same value from either) and copied back at the end; a run shorter
-// than W is updated on a copy padded with its first cell. The values past a run that the padding
-// lanes read are ignored. The values are those of `runs`' arrays, or, with `occupiedOnly`, of its
-// occupied array alone (all three pointers point into it; a deferred run's, UpdateRule::applyRuns).
-// G, the cells a group takes, is W unless a kernel asks for more (Dempster–Shafer's float lanes).
+// group(empty, occupied, probability, cells) for every G consecutive cells of every run: G values
+// from each array, G cells to update in place (G is W unless a kernel asks for more:
+// Dempster–Shafer's eight float lanes). No lane touches a cell past its run (another row's,
+// perhaps another thread's): a run's last count mod G cells are updated as part of its last G
+// cells, computed on a copy of their values from before the run's other groups (so that the cells
+// both cover get the same value from either) and copied back at the end; a run shorter than G is
+// updated on a copy padded with its first cell. The values past a run that the padding lanes read
+// (up to kRunPadding, footprint.h) are ignored. The values are those of `runs`' arrays, or, with
+// `occupiedOnly`, of its occupied array alone (all three pointers point into it; a deferred
+// run's, UpdateRule::applyRuns).
 template <int G = W, class Cell, class Group>
 [[gnu::always_inline]] inline void eachGroup(const EvidenceRuns& runs, Cell* plane, Group&& group,
                                              bool occupiedOnly = false) {
@@ -224,7 +225,7 @@ template <class V>
   const I general = ~(onlyOccupied | onlyEmpty);
   const V x = onlyOccupied ? o : e;
   // Lanes where the mass x adds to is the one the cell leaves out (its sign bit): the other two are
-  // a and b, and both scale by s. All four, the usual case: nothing else to do.
+  // a and b, and both scale by s. All lanes so, the usual case: nothing else to do.
   const V grownCell = onlyOccupied ? a : b;
   if (signBits(grownCell) == kAll && signBits(reinterpret_cast<V>(general)) == 0) {
     const V denominator = 1.0f - (onlyOccupied ? b : a) * x;
