@@ -118,9 +118,10 @@ struct RowWindow {
   // f(row) for every row of [lo, hi] (rows >= 0) that contains() accepts, in increasing order: a
   // stripe at a time, without contains()'s division per row (at two threads the cone models'
   // rasteriser spent a tenth of its time dividing row numbers). f is called from one place, so
-  // that the compiler inlines it.
+  // that the compiler inlines it, and forEachRow is always inlined, so that it is built for the
+  // caller's target (the cone rasteriser's AVX2 function, cone_model.h).
   template <class F>
-  void forEachRow(int lo, int hi, F&& f) const {
+  [[gnu::always_inline]] void forEachRow(int lo, int hi, F&& f) const {
     lo = std::max({lo, begin, 0});
     hi = std::min(hi, end - 1);
     if (lo > hi) return;

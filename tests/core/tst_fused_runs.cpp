@@ -357,14 +357,18 @@ void appendCell(const CellEvidence& c, EvidenceRuns& runs, Footprint& footprint)
   footprint.cells.push_back(c);
 }
 
-// The values past the last run that the kernels' last lanes may read, up to seven (cone_model.h
-// pads for them).
+// The values past the last run that the kernels' last lanes may read: kRunPadding (footprint.h),
+// which the cone models and addition's deferral keep too.
 void padRuns(EvidenceRuns& runs) {
-  for (int k = 0; k < 7; ++k) {
+  for (std::size_t k = 0; k < kRunPadding; ++k) {
     runs.empty.push_back(0.0f);
     runs.occupied.push_back(0.0f);
     runs.probability.push_back(0.5f);
   }
+  // No capacity past the padding, so that AddressSanitizer sees a lane that reads further.
+  runs.empty.shrink_to_fit();
+  runs.occupied.shrink_to_fit();
+  runs.probability.shrink_to_fit();
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Compiled with -ffp-contract=off (core/CMakeLists.txt): the AVX2 clones must not fuse a multiply
 // and an add that the baseline build (x86-64 has no FMA) and the rules' apply() do apart.
-// Each kernel takes four cells at a time in double lanes (four consecutive cells of a run, or four
-// listed cells gathered from the plane and scattered back), the model's floats widened as apply()
+// Each kernel but Dempster–Shafer's takes four cells at a time in double lanes (four consecutive
+// cells of a run, or four listed cells gathered from the plane and scattered back), the model's
+// floats widened as apply()
 // widens them, and repeats cell_updates.h's operations in its order; a lane's `if` is a select of
 // the updated and the old value. Addition's single-precision cells are widened on load and rounded
 // to float on store, as cell_updates.h does one cell at a time. Dempster–Shafer computes in float,
@@ -103,6 +104,7 @@ template <std::size_t Bytes>
 template <int G = W, class Cell, class Group>
 [[gnu::always_inline]] inline void eachGroup(const EvidenceRuns& runs, Cell* plane, Group&& group,
                                              bool occupiedOnly = false) {
+  static_assert(G - 1 <= static_cast<int>(kRunPadding), "a short run's lanes read past it");
   const float* const occupied = runs.occupied.data();
   const float* const empty = occupiedOnly ? occupied : runs.empty.data();
   const float* const probability = occupiedOnly ? occupied : runs.probability.data();
