@@ -209,6 +209,7 @@ template <class Shape, int W>
                                               const GridSpec& grid, const BeamTables& tables,
                                               RowWindow window, EvidenceRuns& out) {
   static_assert(std::is_trivially_copyable_v<Shape>);
+  static_assert(W - 1 <= static_cast<int>(kRunPadding), "a row's last lanes write past it");
   const Shape shape = pb.shape;  // a local: the rows' stores cannot alias it
   std::size_t next = out.valuesEnd();
   thread_local std::vector<std::int32_t> kept;  // a mask per cell of a row
@@ -216,10 +217,9 @@ template <class Shape, int W>
   forEachConeRow<W == 8>(
       beam.sensor, pb.reach, pb.halfAngle, grid, tables,
       [&](std::size_t bound) {
-        // Leaves new values unwritten (UninitialisedAllocator); the last lanes of a row may write
-        // up to W − 1 values past its end, and a rule's lanes read up to kRunPadding past the last
-        // run (footprint.h).
-        const std::size_t need = next + bound + std::max<std::size_t>(W, kRunPadding);
+        // Leaves new values unwritten (UninitialisedAllocator); the room past the last run
+        // (kRunPadding, footprint.h) also takes the W − 1 values a row's last lanes write.
+        const std::size_t need = next + bound + kRunPadding;
         if (out.empty.size() < need) {
           out.empty.resize(need);
           out.occupied.resize(need);
