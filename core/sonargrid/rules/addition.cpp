@@ -1,7 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include <algorithm>
 
-#include "sonargrid/models/lanes.h"
 #include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
 #include "sonargrid/rules/run_kernels.h"
@@ -57,34 +55,8 @@ void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns*
   // The occupied cells wait for the reading's total (applyDeferred). A cell of no occupied evidence
   // adds nothing to it (0 or −0 in fixed point is 0) and is left as it was by the update, so each
   // run is deferred from its first cell of other occupied evidence to its last: the arc's span of
-  // the run, with the occupied values alone. Most of a cone is not on the arc: eight values at a
-  // time are first tested for being all zero (the vector == holds for ±0 and not for NaN or
-  // denormals, as the scalar == does; nothing in the program sets the CPU to treat denormals as
-  // zero).
-  std::size_t used = deferred->valuesEnd();
-  auto zeros = [](const float* p) {
-    const lanes::Floats lo = lanes::load(p), hi = lanes::load(p + 4);
-    return lanes::all((lo == lanes::Floats{}) & (hi == lanes::Floats{}));
-  };
-  for (const EvidenceRuns::Run& run : runs.runs) {
-    const float* const occupied = runs.occupied.data() + run.first;
-    int lo = 0, hi = run.count;
-    while (lo + 8 <= hi && zeros(occupied + lo)) lo += 8;
-    while (lo < hi && occupied[lo] == 0.0f) ++lo;
-    if (lo == hi) continue;
-    while (hi - 8 >= lo && zeros(occupied + hi - 8)) hi -= 8;
-    while (occupied[hi - 1] == 0.0f) --hi;  // stops at lo at the latest
-    const auto count = static_cast<std::size_t>(hi - lo);
-    // kRunPadding values of room past the span, zeros, which the lanes read from a short run's
-    // start and throw away (footprint.h, run_kernels).
-    const std::size_t room = used + count + kRunPadding;
-    if (deferred->occupied.size() < room) deferred->occupied.resize(room);
-    std::copy_n(occupied + lo, count, deferred->occupied.data() + used);
-    std::fill_n(deferred->occupied.data() + used + count, kRunPadding, 0.0f);
-    deferred->runs.push_back(
-        {run.cell + static_cast<std::uint32_t>(lo), hi - lo, static_cast<std::uint32_t>(used)});
-    used += count;
-  }
+  // the run, with the occupied values alone (found eight values at a time, run_kernels.cpp).
+  runs::occupiedSpans(runs, *deferred);
 }
 
 void AdditionRule::applyDeferred(const EvidenceRuns& deferred, const FootprintTotals& totals,

@@ -293,6 +293,40 @@ SG_RUN_CLONES void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* 
       true);
 }
 
+SG_RUN_CLONES void occupiedSpans(const EvidenceRuns& runs, EvidenceRuns& deferred) {
+  std::size_t used = deferred.valuesEnd();
+  for (const EvidenceRuns::Run& run : runs.runs) {
+    const float* const occupied = runs.occupied.data() + run.first;
+    const int n = run.count;
+    // Eight values at a time, a bit each for "not ±0" (the vector == holds for ±0 and not for NaN
+    // or denormals, as the scalar == does; nothing in the program sets the CPU to treat denormals
+    // as zero); the last group's bits past the run, read from the room kRunPadding keeps past the
+    // last run, are cleared.
+    int lo = -1, hi = 0;  // the first value of evidence, and one past the last
+    for (int k = 0; k < n; k += 8) {
+      Floats8 v;
+      std::memcpy(&v, occupied + k, sizeof v);
+      unsigned bits =
+          ~static_cast<unsigned>(signBits(reinterpret_cast<Floats8>(v == 0.0f))) & 0xffu;
+      if (n - k < 8) bits &= (1u << (n - k)) - 1u;
+      if (bits == 0) continue;
+      if (lo < 0) lo = k + __builtin_ctz(bits);
+      hi = k + 32 - __builtin_clz(bits);
+    }
+    if (lo < 0) continue;
+    const auto count = static_cast<std::size_t>(hi - lo);
+    // kRunPadding values of room past the span, zeros, which the lanes read from a short run's
+    // start and throw away (eachGroup).
+    const std::size_t room = used + count + kRunPadding;
+    if (deferred.occupied.size() < room) deferred.occupied.resize(room);
+    std::copy_n(occupied + lo, count, deferred.occupied.data() + used);
+    std::fill_n(deferred.occupied.data() + used + count, kRunPadding, 0.0f);
+    deferred.runs.push_back(
+        {run.cell + static_cast<std::uint32_t>(lo), hi - lo, static_cast<std::uint32_t>(used)});
+    used += count;
+  }
+}
+
 SG_RUN_CLONES void bayes(const EvidenceRuns& runs, BayesCell* plane, bool likelihood) {
   auto update = [](Doubles p, BayesCell* cells) SG_INLINE_LAMBDA {
     const Doubles m = load(cells);
