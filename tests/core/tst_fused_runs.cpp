@@ -405,7 +405,9 @@ void TstFusedRuns::uniformGivesApplysBits() {
   constexpr std::uint32_t kCells = 24;
   auto prepared = [&] { return preparedGrid(*r, kCells); };
   const CellEvidence value(0, empty, occupied, probability);
-  for (const std::size_t n : {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 23}) {
+  // Around the kernels' four lanes and Dempster–Shafer's eight: up to two groups of eight and a
+  // padded tail.
+  for (const std::size_t n : {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 15, 16, 17, 23}) {
     // n distinct cells out of order: 7 is prime to 24.
     std::vector<std::uint32_t> cells(n);
     Footprint f;

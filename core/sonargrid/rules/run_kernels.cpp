@@ -7,9 +7,9 @@
 // widens them, and repeats cell_updates.h's operations in its order; a lane's `if` is a select of
 // the updated and the old value. Addition's single-precision cells are widened on load and rounded
 // to float on store, as cell_updates.h does one cell at a time. Dempster–Shafer computes in float,
-// as cell_updates.h does, in eight float lanes for a run's cells and four for listed ones; its
-// cells with both kinds of evidence (which no model gives) go through cell_updates.h itself, one
-// at a time.
+// as cell_updates.h does, in eight float lanes (a run's cells, or listed ones); its cells with both
+// kinds of evidence (which no model gives) go through cell_updates.h itself, one at a time.
+// Addition's deferral (occupiedSpans) looks at eight values at a time too.
 #include "sonargrid/rules/run_kernels.h"
 
 #include <algorithm>
@@ -148,6 +148,31 @@ template <class Group>
     const std::size_t last = n - 1;
     group(c[whole], c[std::min(whole + 1, last)], c[std::min(whole + 2, last)], c[last]);
   }
+}
+
+// group(c) for every G consecutive entries c[0 .. G) of `cells`, as eachListedGroup (the last
+// cells.size() mod G in a group padded with copies of its last cell): for eight lanes.
+template <int G, class Group>
+[[gnu::always_inline]] inline void eachListedGroup(std::span<const std::uint32_t> cells,
+                                                   Group&& group) {
+  const std::uint32_t* const c = cells.data();
+  const std::size_t n = cells.size();
+  const std::size_t whole = n - n % G;
+  for (std::size_t k = 0; k < whole; k += G) group(c + k);
+  if (whole < n) {
+    std::uint32_t padded[G];
+    for (std::size_t j = 0; j < G; ++j) padded[j] = c[std::min(whole + j, n - 1)];
+    group(padded);
+  }
+}
+
+// A cell's eight bytes, as one double's bits.
+template <class Cell>
+[[gnu::always_inline]] inline double cellBits(const Cell* cell) {
+  static_assert(sizeof(Cell) == sizeof(double));
+  double v;
+  std::memcpy(&v, cell, sizeof v);
+  return v;
 }
 
 // update(m) for every cell of `cells` (eachListedGroup; one double a cell), gathered into lanes and
@@ -425,18 +450,33 @@ SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
     for (const std::uint32_t c : cells) generalDempsterShafer(occupied, empty, plane[c]);
     return;
   }
-  // One kind of evidence: four cells at a time (eachListed), each cell's two floats one 8-byte lane
-  // of lo = a0 b0 a1 b1 and hi = a2 b2 a3 b3.
-  using Pairs = double __attribute__((vector_size(16)));
-  eachListed(cells, plane, [=](Doubles m) SG_INLINE_LAMBDA {
-    const Floats lo = reinterpret_cast<Floats>(Pairs{m[0], m[1]});
-    const Floats hi = reinterpret_cast<Floats>(Pairs{m[2], m[3]});
-    Floats a = __builtin_shufflevector(lo, hi, 0, 2, 4, 6);
-    Floats b = __builtin_shufflevector(lo, hi, 1, 3, 5, 7);
-    dempsterShaferLanes(Floats{} + occupied, Floats{} + empty, a, b);
-    const Pairs newLo = reinterpret_cast<Pairs>(__builtin_shufflevector(a, b, 0, 4, 1, 5));
-    const Pairs newHi = reinterpret_cast<Pairs>(__builtin_shufflevector(a, b, 2, 6, 3, 7));
-    return Doubles{newLo[0], newLo[1], newHi[0], newHi[1]};
+  // One kind of evidence: eight cells at a time (eachListedGroup<8>), gathered as eight 8-byte
+  // pairs into lo = a0 b0 … a3 b3 and hi = a4 b4 … a7 b7, and scattered back.
+  static_assert(sizeof(DempsterShaferCell) == sizeof(double));
+  eachListedGroup<8>(cells, [=](const std::uint32_t* c) SG_INLINE_LAMBDA {
+    const Doubles lo = {cellBits(plane + c[0]), cellBits(plane + c[1]), cellBits(plane + c[2]),
+                        cellBits(plane + c[3])};
+    const Doubles hi = {cellBits(plane + c[4]), cellBits(plane + c[5]), cellBits(plane + c[6]),
+                        cellBits(plane + c[7])};
+    const Floats8 lo8 = reinterpret_cast<Floats8>(lo), hi8 = reinterpret_cast<Floats8>(hi);
+    Floats8 a = __builtin_shufflevector(lo8, hi8, 0, 2, 4, 6, 8, 10, 12, 14);
+    Floats8 b = __builtin_shufflevector(lo8, hi8, 1, 3, 5, 7, 9, 11, 13, 15);
+    dempsterShaferLanes(Floats8{} + occupied, Floats8{} + empty, a, b);
+    const Doubles newLo =
+        reinterpret_cast<Doubles>(__builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11));
+    const Doubles newHi =
+        reinterpret_cast<Doubles>(__builtin_shufflevector(a, b, 4, 12, 5, 13, 6, 14, 7, 15));
+    // Written out: a loop over j went through the stack (eachListed).
+    const double m0 = newLo[0], m1 = newLo[1], m2 = newLo[2], m3 = newLo[3];
+    const double m4 = newHi[0], m5 = newHi[1], m6 = newHi[2], m7 = newHi[3];
+    std::memcpy(plane + c[0], &m0, sizeof(double));
+    std::memcpy(plane + c[1], &m1, sizeof(double));
+    std::memcpy(plane + c[2], &m2, sizeof(double));
+    std::memcpy(plane + c[3], &m3, sizeof(double));
+    std::memcpy(plane + c[4], &m4, sizeof(double));
+    std::memcpy(plane + c[5], &m5, sizeof(double));
+    std::memcpy(plane + c[6], &m6, sizeof(double));
+    std::memcpy(plane + c[7], &m7, sizeof(double));
   });
 }
 
