@@ -94,9 +94,9 @@ template <std::size_t Bytes>
 // group(empty, occupied, probability, cells) for every G consecutive cells of every run: G values
 // from each array, G cells to update in place (G is W unless a kernel asks for more:
 // Dempster–Shafer's eight float lanes). No lane touches a cell past its run (another row's,
-// perhaps another thread's): a run's last count mod G cells are updated as part of its last G
-// cells, computed on a copy of their values from before the run's other groups (so that the cells
-// both cover get the same value from either) and copied back at the end; a run shorter than G is
+// perhaps another thread's): a run's last G cells, which take its last count mod G, are computed on
+// a copy of their values from before the run's other groups (so that the cells both cover get the
+// same value from either) and copied back at the end; a run shorter than G is
 // updated on a copy padded with its first cell. The values past a run that the padding lanes read
 // (up to kRunPadding, footprint.h) are ignored. The values are those of `runs`' arrays, or, with
 // `occupiedOnly`, of its occupied array alone (all three pointers point into it; a deferred
@@ -119,14 +119,14 @@ template <int G = W, class Cell, class Group>
       for (int j = 0; j < n; ++j) cells[j] = last[j];
       continue;
     }
-    const int tail = n % G == 0 ? -1 : n - G;  // the first of the last G cells, when apart
-    if (tail >= 0) {
-      copyLanes<sizeof last>(last, cells + tail);
-      group(empty + v + tail, occupied + v + tail, probability + v + tail, last);
-    }
-    for (int k = 0; k + G <= n; k += G)
+    // The last G cells, on the copy, whatever n mod G (without a branch on it: a run's length is
+    // as good as random); then the groups before them, the last of which may overlap them.
+    const int tail = n - G;
+    copyLanes<sizeof last>(last, cells + tail);
+    group(empty + v + tail, occupied + v + tail, probability + v + tail, last);
+    for (int k = 0; k < tail; k += G)
       group(empty + v + k, occupied + v + k, probability + v + k, cells + k);
-    if (tail >= 0) copyLanes<sizeof last>(cells + tail, last);
+    copyLanes<sizeof last>(cells + tail, last);
   }
 }
 
