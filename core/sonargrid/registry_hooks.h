@@ -10,6 +10,10 @@
 #include "sonargrid/models/sensor_model.h"
 #include "sonargrid/rules/update_rule.h"
 
+namespace sg {
+enum class ConeLanes : int;  // cone_model.h
+}  // namespace sg
+
 namespace sg::testing {
 
 // Every model makeSensorModel() (and every rule makeUpdateRule()) makes from now on, configured
@@ -21,9 +25,10 @@ using UpdateRuleWrapper = std::function<std::unique_ptr<UpdateRule>(std::unique_
 void wrapSensorModels(SensorModelWrapper wrap);
 void wrapUpdateRules(UpdateRuleWrapper wrap);
 
-// Whether the cone models may evaluate their rows in eight lanes where the CPU has AVX2 (the
-// default, true) or must use the baseline's four (false), so that a test on an AVX2 machine checks
-// both. Set it only while no mapper is mapping. Returns the previous setting.
-bool useWideLanes(bool allowed);
+// The widest code the cone models may evaluate their rows with where the CPU has it
+// (ConeLanes, cone_model.h: the baseline's four lanes, eight with AVX2, eight with AVX-512; by
+// default the widest), so that a test on a machine with AVX-512 checks all three. Set it only
+// while no mapper is mapping. Returns the previous setting.
+ConeLanes limitConeLanes(ConeLanes widest);
 
 }  // namespace sg::testing

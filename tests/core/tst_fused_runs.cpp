@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The batch path where the model hands its cells to the rule as runs (SensorModel::evidenceRuns,
 // UpdateRule::applyRuns; no Footprint in between) against the footprint path, the oracle: every
-// cone model × every probabilistic rule, on 1, 2 and 3 threads, with the rows in eight lanes (on a
-// CPU with AVX2) and in four, must leave every plane of the grid and every observed mark with the
-// same bits. The same for HIMM's axis with every rule, whose batch path lists each reading's axis
-// cells and folds them into the grid with one UpdateRule::applyUniform call per value (the HIMM
-// rule: a table look-up per cell; SensorModel::listDirect, applyDirect), on 1, 2 and 3 threads.
-// And applyUniform and applyRuns on their own against apply(), for evidence and cell values the
-// models never give (both kinds of evidence at once, out of range, NaN) and lists and runs of every
-// length around the lanes' four.
+// cone model × every probabilistic rule, on 1, 2 and 3 threads, with the rows in eight lanes built
+// for AVX-512 and for AVX2 (on a CPU with them) and in four, must leave every plane of the grid and
+// every observed mark with the same bits. The same for HIMM's axis with every rule, whose batch
+// path lists each reading's axis cells and folds them into the grid with one
+// UpdateRule::applyUniform call per value (the HIMM rule: a table look-up per cell;
+// SensorModel::listDirect, applyDirect), on 1, 2 and 3 threads. And applyUniform and applyRuns on
+// their own against apply(), for evidence and cell values the models never give (both kinds of
+// evidence at once, out of range, NaN) and lists and runs of every length around the lanes' four
+// and eight.
 //
 // Where the expectations come from: the grid of the footprint path itself. A mapper with a
 // FootprintObserver maps through footprint() and UpdateRule::apply() one reading at a time (the
@@ -24,6 +25,7 @@
 
 #include "sonargrid/concurrency.h"
 #include "sonargrid/mapper.h"
+#include "sonargrid/models/cone_model.h"
 #include "sonargrid/registry_hooks.h"
 #include "sonargrid/rules/rule_classes.h"
 
@@ -217,22 +219,29 @@ void TstFusedRuns::runsGiveTheFootprintPathsBits() {
   }
   QVERIFY(bottom && top && left && right);
 
-  // Rows in eight lanes where the CPU has AVX2 (else four again), and in the baseline's four.
-  for (const bool wide : {true, false}) {
-    const bool previous = testing::useWideLanes(wide);
+  // Rows in eight lanes built for AVX-512 and for AVX2, where the CPU has them (else the next
+  // narrower again), and in the baseline's four.
+  const struct {
+    ConeLanes lanes;
+    const char* name;
+  } widths[] = {
+      {ConeLanes::Avx512, "AVX-512"}, {ConeLanes::Avx2, "AVX2"}, {ConeLanes::Four, "four"}};
+  for (const auto& width : widths) {
+    const ConeLanes previous = testing::limitConeLanes(width.lanes);
     for (const unsigned threads : {1u, 2u, 3u}) {
       ScopedThreadCount count(threads);
       Mapper runs(d.ring, smallGrid(), settings);
       QVERIFY(runs.mapDataset(d));
       QCOMPARE(runs.readingsIntegrated(), d.readingCount());
       if (!sameGrid(settings.rule, oracle.storage(), runs.storage())) {
-        testing::useWideLanes(previous);
-        QFAIL(qPrintable(QString("%1 threads, %2 lanes: the grid differs from the footprint path's")
-                             .arg(threads)
-                             .arg(wide ? "wide" : "four")));
+        testing::limitConeLanes(previous);
+        QFAIL(qPrintable(
+            QString("%1 threads, lanes up to %2: the grid differs from the footprint path's")
+                .arg(threads)
+                .arg(width.name)));
       }
     }
-    testing::useWideLanes(previous);
+    testing::limitConeLanes(previous);
   }
 }
 

@@ -33,6 +33,10 @@ struct ConeValue {
   T pE, pO, p;
 };
 
+// The code a cone model's rows are evaluated with: four float lanes (any x86-64), or eight built
+// for AVX2, or the same eight built for AVX-512. Every one gives the same bits.
+enum class ConeLanes : int { Four, Avx2, Avx512 };
+
 // One reading of a cone model: whether it writes anything, how far and how wide, and its shape.
 template <class Shape>
 struct ConeBeam {
@@ -242,11 +246,21 @@ __attribute__((target("avx2"))) void coneRunsWide(const ConeBeam<Shape>& pb, con
                                                   RowWindow window, EvidenceRuns& out) {
   coneRunsIn<Shape, lanes::kWideWidth>(pb, beam, grid, tables, window, out);
 }
+// The same eight lanes built for AVX-512 (F, VL, BW, DQ): the same operations on the same 32-byte
+// vectors (still no FMA: the files are built with -ffp-contract=off), with 32 vector registers
+// instead of 16, so that the shape's values and the lanes' intermediates stay in registers rather
+// than on the stack. Called only where the CPU has all four.
+template <class Shape>
+__attribute__((target("avx2,avx512f,avx512vl,avx512bw,avx512dq"))) void coneRunsWide512(
+    const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+    RowWindow window, EvidenceRuns& out) {
+  coneRunsIn<Shape, lanes::kWideWidth>(pb, beam, grid, tables, window, out);
+}
 #endif
 
-// Whether coneRuns() evaluates rows in eight lanes: where the CPU has AVX2, unless a test asked
-// for four (testing::useWideLanes, registry_hooks.h).
-bool wideConeLanes();
+// What coneRuns() evaluates rows with: the widest of ConeLanes the CPU has, unless a test asked
+// for less (testing::limitConeLanes, registry_hooks.h).
+ConeLanes coneLanes();
 
 // The cells of coneFootprint(), as runs.
 template <class Shape>
@@ -254,7 +268,14 @@ void coneRuns(const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid,
               const BeamTables& tables, RowWindow window, EvidenceRuns& out) {
   if (!pb.active) return;
 #ifdef SG_WIDE_LANES
-  if (wideConeLanes()) return coneRunsWide(pb, beam, grid, tables, window, out);
+  switch (coneLanes()) {
+    case ConeLanes::Avx512:
+      return coneRunsWide512(pb, beam, grid, tables, window, out);
+    case ConeLanes::Avx2:
+      return coneRunsWide(pb, beam, grid, tables, window, out);
+    case ConeLanes::Four:
+      break;
+  }
 #endif
   coneRunsIn<Shape, lanes::kWidth>(pb, beam, grid, tables, window, out);
 }

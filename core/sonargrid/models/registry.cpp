@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
+#include <algorithm>
 #include <atomic>
 #include <stdexcept>
 
@@ -19,19 +20,24 @@ void testing::wrapSensorModels(SensorModelWrapper wrap) {
 }
 
 namespace {
-std::atomic<bool> wideLanesAllowed{true};
+std::atomic<ConeLanes> coneLaneLimit{ConeLanes::Avx512};
 }  // namespace
 
-bool testing::useWideLanes(bool allowed) {
-  return wideLanesAllowed.exchange(allowed);
+ConeLanes testing::limitConeLanes(ConeLanes widest) {
+  return coneLaneLimit.exchange(widest);
 }
 
-bool wideConeLanes() {
+ConeLanes coneLanes() {
 #ifdef SG_WIDE_LANES
-  static const bool cpu = __builtin_cpu_supports("avx2");
-  return cpu && wideLanesAllowed.load(std::memory_order_relaxed);
+  static const ConeLanes cpu =
+      __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+              __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq")
+          ? ConeLanes::Avx512
+      : __builtin_cpu_supports("avx2") ? ConeLanes::Avx2
+                                       : ConeLanes::Four;
+  return std::min(cpu, coneLaneLimit.load(std::memory_order_relaxed));
 #else
-  return false;
+  return ConeLanes::Four;
 #endif
 }
 
