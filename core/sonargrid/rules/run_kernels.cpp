@@ -130,28 +130,12 @@ template <int G = W, class Cell, class Group>
   }
 }
 
-// group(c0, c1, c2, c3) for every W cells of `cells` (distinct grid indices, the same evidence for
-// all), in order. The last cells.size() mod W go in a group padded with copies of its last cell:
-// the same cell in two lanes gets the same value in both (a lane's update is a function of the
-// cell's bytes alone), so their stores agree, and each cell is still updated once. A call per cell,
-// the way the last ones went before, cost HIMM's reading with its one echo cell more than its
-// lanes.
-template <class Group>
-[[gnu::always_inline]] inline void eachListedGroup(std::span<const std::uint32_t> cells,
-                                                   Group&& group) {
-  static_assert(W == 4);
-  const std::uint32_t* const c = cells.data();
-  const std::size_t n = cells.size();
-  const std::size_t whole = n - n % W;
-  for (std::size_t k = 0; k < whole; k += W) group(c[k], c[k + 1], c[k + 2], c[k + 3]);
-  if (whole < n) {
-    const std::size_t last = n - 1;
-    group(c[whole], c[std::min(whole + 1, last)], c[std::min(whole + 2, last)], c[last]);
-  }
-}
-
-// group(c) for every G consecutive entries c[0 .. G) of `cells`, as eachListedGroup (the last
-// cells.size() mod G in a group padded with copies of its last cell): for eight lanes.
+// group(c) for every G consecutive entries c[0 .. G) of `cells` (distinct grid indices, the same
+// evidence for all), in order. The last cells.size() mod G go in a group padded with copies of its
+// last cell: the same cell in two lanes gets the same value in both (a lane's update is a function
+// of the cell's bytes alone), so their stores agree, and each cell is still updated once. A call
+// per cell, the way the last ones went before, cost HIMM's reading with its one echo cell more than
+// its lanes.
 template <int G, class Group>
 [[gnu::always_inline]] inline void eachListedGroup(std::span<const std::uint32_t> cells,
                                                    Group&& group) {
@@ -166,34 +150,32 @@ template <int G, class Group>
   }
 }
 
-// A cell's eight bytes, as one double's bits.
+// The W cells c[0 .. W) of `plane`, eight bytes each, as one double's bits a lane, and back.
 template <class Cell>
-[[gnu::always_inline]] inline double cellBits(const Cell* cell) {
-  static_assert(sizeof(Cell) == sizeof(double));
-  double v;
-  std::memcpy(&v, cell, sizeof v);
-  return v;
+[[gnu::always_inline]] inline Doubles gather(const Cell* plane, const std::uint32_t* c) {
+  static_assert(sizeof(Cell) == sizeof(double) && W == 4);
+  double v[W];
+  for (int j = 0; j < W; ++j) std::memcpy(&v[j], plane + c[j], sizeof(double));
+  return Doubles{v[0], v[1], v[2], v[3]};
+}
+template <class Cell>
+[[gnu::always_inline]] inline void scatter(Cell* plane, const std::uint32_t* c, Doubles m) {
+  static_assert(sizeof(Cell) == sizeof(double) && W == 4);
+  // Written out: a loop over j went through the stack (a 32-byte store, four 8-byte loads).
+  const double m0 = m[0], m1 = m[1], m2 = m[2], m3 = m[3];
+  std::memcpy(plane + c[0], &m0, sizeof(double));
+  std::memcpy(plane + c[1], &m1, sizeof(double));
+  std::memcpy(plane + c[2], &m2, sizeof(double));
+  std::memcpy(plane + c[3], &m3, sizeof(double));
 }
 
-// update(m) for every cell of `cells` (eachListedGroup; one double a cell), gathered into lanes and
-// scattered back.
+// update(m) for every cell of `cells` (eachListedGroup; one double a cell), W at a time, gathered
+// into lanes and scattered back.
 template <class Cell, class Lanes>
 [[gnu::always_inline]] inline void eachListed(std::span<const std::uint32_t> cells, Cell* plane,
                                               Lanes&& update) {
-  static_assert(sizeof(Cell) == sizeof(double));
-  eachListedGroup(cells, [&](std::uint32_t c0, std::uint32_t c1, std::uint32_t c2,
-                             std::uint32_t c3) SG_INLINE_LAMBDA {
-    Cell* const cell[W] = {plane + c0, plane + c1, plane + c2, plane + c3};
-    double v[W];
-    for (int j = 0; j < W; ++j) std::memcpy(&v[j], cell[j], sizeof(double));
-    const Doubles m = update(Doubles{v[0], v[1], v[2], v[3]});
-    // Written out: a loop over j went through the stack (a 32-byte store, four 8-byte loads).
-    const double m0 = m[0], m1 = m[1], m2 = m[2], m3 = m[3];
-    std::memcpy(cell[0], &m0, sizeof(double));
-    std::memcpy(cell[1], &m1, sizeof(double));
-    std::memcpy(cell[2], &m2, sizeof(double));
-    std::memcpy(cell[3], &m3, sizeof(double));
-  });
+  eachListedGroup<W>(cells, [&](const std::uint32_t* c)
+                                SG_INLINE_LAMBDA { scatter(plane, c, update(gather(plane, c))); });
 }
 
 // DempsterShaferCell::masses() and ::of() per lane, on four or eight cells' a and b (V: Floats or
@@ -450,14 +432,10 @@ SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
     for (const std::uint32_t c : cells) generalDempsterShafer(occupied, empty, plane[c]);
     return;
   }
-  // One kind of evidence: eight cells at a time (eachListedGroup<8>), gathered as eight 8-byte
+  // One kind of evidence: eight cells at a time (eachListedGroup<2 * W>), gathered as eight 8-byte
   // pairs into lo = a0 b0 … a3 b3 and hi = a4 b4 … a7 b7, and scattered back.
-  static_assert(sizeof(DempsterShaferCell) == sizeof(double));
-  eachListedGroup<8>(cells, [=](const std::uint32_t* c) SG_INLINE_LAMBDA {
-    const Doubles lo = {cellBits(plane + c[0]), cellBits(plane + c[1]), cellBits(plane + c[2]),
-                        cellBits(plane + c[3])};
-    const Doubles hi = {cellBits(plane + c[4]), cellBits(plane + c[5]), cellBits(plane + c[6]),
-                        cellBits(plane + c[7])};
+  eachListedGroup<2 * W>(cells, [=](const std::uint32_t* c) SG_INLINE_LAMBDA {
+    const Doubles lo = gather(plane, c), hi = gather(plane, c + W);
     const Floats8 lo8 = reinterpret_cast<Floats8>(lo), hi8 = reinterpret_cast<Floats8>(hi);
     Floats8 a = __builtin_shufflevector(lo8, hi8, 0, 2, 4, 6, 8, 10, 12, 14);
     Floats8 b = __builtin_shufflevector(lo8, hi8, 1, 3, 5, 7, 9, 11, 13, 15);
@@ -466,17 +444,8 @@ SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
         reinterpret_cast<Doubles>(__builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11));
     const Doubles newHi =
         reinterpret_cast<Doubles>(__builtin_shufflevector(a, b, 4, 12, 5, 13, 6, 14, 7, 15));
-    // Written out: a loop over j went through the stack (eachListed).
-    const double m0 = newLo[0], m1 = newLo[1], m2 = newLo[2], m3 = newLo[3];
-    const double m4 = newHi[0], m5 = newHi[1], m6 = newHi[2], m7 = newHi[3];
-    std::memcpy(plane + c[0], &m0, sizeof(double));
-    std::memcpy(plane + c[1], &m1, sizeof(double));
-    std::memcpy(plane + c[2], &m2, sizeof(double));
-    std::memcpy(plane + c[3], &m3, sizeof(double));
-    std::memcpy(plane + c[4], &m4, sizeof(double));
-    std::memcpy(plane + c[5], &m5, sizeof(double));
-    std::memcpy(plane + c[6], &m6, sizeof(double));
-    std::memcpy(plane + c[7], &m7, sizeof(double));
+    scatter(plane, c, newLo);
+    scatter(plane, c + W, newHi);
   });
 }
 
