@@ -8,7 +8,9 @@
 // their median CPU time: on a loaded machine the CPU time of one thread varies far less than the
 // wall-clock time, so two builds can be compared on it (a paired A/B of the engine). With a sixth
 // argument N the re-maps run on N threads and the CPU time is all of theirs: what the threads
-// spend in all, duplicated set-up included.
+// spend in all, duplicated set-up included. In place of `sim` or `stress`, a path to an .sglog
+// log (datasets/office/office.sglog: `sonargrid-cli bench`'s office re-map) maps that log on a grid
+// fitted to its odometry at 5 cm; READINGS is then ignored.
 
 #include <algorithm>
 #include <cstdint>
@@ -21,6 +23,7 @@
 
 #include "bench_workload.h"
 #include "sonargrid/concurrency.h"
+#include "sonargrid/io/sglog.h"
 
 namespace {
 
@@ -59,17 +62,23 @@ double cpuMs(bool process = false) {
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: profile_remap MODEL RULE [READINGS] [sim|stress] [K [THREADS]]\n");
+    std::fprintf(
+        stderr,
+        "usage: profile_remap MODEL RULE [READINGS] [sim|stress|LOG.sglog] [K [THREADS]]\n");
     return 2;
   }
   const int readings = argc > 3 ? std::atoi(argv[3]) : 6400;
-  const bool stress = argc > 4 && std::strcmp(argv[4], "stress") == 0;
-  const sg::Dataset d =
-      stress ? bench::stressWorkload(readings) : bench::simulatedWorkload(readings);
+  const std::string source = argc > 4 ? argv[4] : "sim";
+  const bool log = source.ends_with(".sglog");
+  const sg::Dataset d = log                  ? sg::readSglog(source)
+                        : source == "stress" ? bench::stressWorkload(readings)
+                                             : bench::simulatedWorkload(readings);
   sg::MapperSettings settings;
   settings.model = argv[1];
   settings.rule = argv[2];
-  sg::Mapper mapper(d.ring, bench::benchmarkGrid(), settings);
+  sg::Mapper mapper(d.ring,
+                    log ? d.fittingGrid(sg::PoseSource::Odometry, 0.05) : bench::benchmarkGrid(),
+                    settings);
   remapOnce(mapper, d);
   const std::uint64_t h = digest(mapper.snapshot());
   // Counted on a second (batch) re-map, outside remapOnce.
