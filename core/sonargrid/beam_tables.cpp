@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -17,8 +18,13 @@ BeamTables::BeamTables(double cellSize, int radiusCells, int subdivisions)
       radius_(radiusCells),
       subdivisions_(subdivisions),
       tableSize_(static_cast<std::size_t>(side()) * static_cast<std::size_t>(side())) {
-  // kPadding entries past the last table, so that a reader may load a few entries past a row.
-  entries_.resize(tableSize_ * static_cast<std::size_t>(subdivisions_ * subdivisions_) + kPadding);
+  // The mirror (View) is exact only where the sub-cell centres are exact in binary.
+  if (subdivisions_ < 1 || (subdivisions_ & (subdivisions_ - 1)) != 0)
+    throw std::invalid_argument("BeamTables: subdivisions must be a power of two");
+  const int count = subdivisions_ * storedRows();
+  // kPadding entries past the last table, so that a reader may load a few entries past a row
+  // (the last row in memory is the last table's top row, or a mirrored view's bottom row).
+  entries_.resize(tableSize_ * static_cast<std::size_t>(count) + kPadding);
   auto fill = [this](int q) {
     const int qx = q % subdivisions_, qy = q / subdivisions_;
     // Sensor at the centre of sub-cell (qx, qy) of cell (0, 0), in cell units.
@@ -35,8 +41,7 @@ BeamTables::BeamTables(double cellSize, int radiusCells, int subdivisions)
       }
     }
   };
-  const int count = subdivisions_ * subdivisions_;
-  // A 10 m sonar at 5 cm cells is 16 tables of 449² entries, some 60 ms of atan2 on one core:
+  // A 10 m sonar at 5 cm cells is 8 tables of 449² entries, some 30 ms of atan2 on one core:
   // the tables are shared out between the policy's threads, each taking every n-th one.
   const unsigned parts = tableSize_ < 10000 ? 1u : std::min(parallelThreads(), unsigned(count));
   runParallel(parts, [&](unsigned k) {

@@ -13,6 +13,7 @@
 #include <memory>
 #include <numbers>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -133,7 +134,6 @@ std::vector<Visit> bruteForceCone(const sg::Pose2D& sensor, double reach, double
   const int iu = static_cast<int>(std::floor(u));
   const int iv = static_cast<int>(std::floor(v));
   const int r = tables.radius();
-  const sg::BeamTables::Entry* t = tables.table(qx, qy);
   const float reachF = static_cast<float>(reach);
   std::vector<Visit> out;
   for (int iy = 0; iy < grid.height; ++iy) {
@@ -142,7 +142,7 @@ std::vector<Visit> bruteForceCone(const sg::Pose2D& sensor, double reach, double
       const int dy = iy - iv;
       // Beyond the table every cell centre is more than radius - 1 cells away, out of reach.
       if (std::abs(dx) > r || std::abs(dy) > r) continue;
-      const sg::BeamTables::Entry e = t[(dy + r) * tables.side() + dx + r];
+      const sg::BeamTables::Entry e = tables.entry(qx, qy, dx, dy);
       if (!(e.distance <= reachF)) continue;
       double theta = static_cast<double>(e.bearing) - sensor.heading;
       if (theta > kPi) {
@@ -209,6 +209,7 @@ class TstGeometry : public QObject {
   void beamTableEntries();
   void beamTablesShared();
   void beamTablesFilledByEveryCore();
+  void beamTablesMirrorIsExact();
 
   void coneTiny_data();
   void coneTiny();
@@ -1078,7 +1079,7 @@ void TstGeometry::beamTableEntries() {
   QCOMPARE(tables.subdivisions(), sg::BeamTables::kDefaultSubdivisions);
   QCOMPARE(tables.subdivisions(), 4);
 
-  const sg::BeamTables::Entry e = tables.table(qx, qy)[(dy + 2) * 5 + dx + 2];
+  const sg::BeamTables::Entry e = tables.entry(qx, qy, dx, dy);
   // Floats: 1e-7 is a few float ulps at these magnitudes; the hand values have 10 decimals.
   QVERIFY2(near(e.distance, distance, 1e-7), describe(e.distance, distance));
   QVERIFY2(near(e.bearing, bearing, 2e-7), describe(e.bearing, bearing));
@@ -1148,16 +1149,54 @@ void TstGeometry::beamTablesFilledByEveryCore() {
     for (int qx = 0; qx < 4; ++qx)
       for (int dy = -10; dy <= 10; ++dy)
         for (int dx = -10; dx <= 10; ++dx) {
-          const sg::BeamTables::Entry e = big.table(qx, qy)[(dy + 64) * big.side() + dx + 64];
-          const sg::BeamTables::Entry f = small.table(qx, qy)[(dy + 10) * small.side() + dx + 10];
+          const sg::BeamTables::Entry e = big.entry(qx, qy, dx, dy);
+          const sg::BeamTables::Entry f = small.entry(qx, qy, dx, dy);
           QCOMPARE(e.distance, f.distance);
           QCOMPARE(e.bearing, f.bearing);
         }
   // And one far entry by hand: sub-cell (3, 0) centre at (0.875, 0.125) cells; cell (64, -64) has
   // its centre at (64.5, -63.5); offset (63.625, -63.625) cells, 45° below the x axis.
-  const sg::BeamTables::Entry far = big.table(3, 0)[(-64 + 64) * big.side() + 64 + 64];
+  const sg::BeamTables::Entry far = big.entry(3, 0, 64, -64);
   QVERIFY(std::abs(far.distance - 63.625 * 0.05 * std::sqrt(2.0)) < 1e-6);
   QVERIFY(std::abs(far.bearing + std::numbers::pi / 4) < 1e-6);
+}
+
+void TstGeometry::beamTablesMirrorIsExact() {
+  // The upper sub-cells (qy = 2, 3 of 4) read the lower ones' tables upside down with the bearing
+  // negated (BeamTables::View): every entry of every sub-cell must still be the formula's own value
+  // for that sub-cell, bit for bit, or the cone pairs' maps would change. A 5 cm table as the
+  // benchmark's 5 m sonar gets (radius 128: 257² entries, 16 sub-cells, about a million atan2).
+  const sg::BeamTables tables(0.05, 128);
+  const int r = tables.radius();
+  for (int qy = 0; qy < 4; ++qy) {
+    for (int qx = 0; qx < 4; ++qx) {
+      const sg::BeamTables::View v = tables.view(qx, qy);
+      QCOMPARE(v.mirrored, qy >= 2);
+      QCOMPARE(v.rowStep, qy >= 2 ? -tables.side() : tables.side());
+      int wrong = 0;
+      for (int dy = -r; dy <= r; ++dy) {
+        for (int dx = -r; dx <= r; ++dx) {
+          const double ex = (dx + 0.5 - (qx + 0.5) / 4) * 0.05;
+          const double ey = (dy + 0.5 - (qy + 0.5) / 4) * 0.05;
+          const sg::BeamTables::Entry e = tables.entry(qx, qy, dx, dy);
+          const float raw = v.row(dy)[dx].bearing;
+          wrong += e.distance != static_cast<float>(std::hypot(ex, ey)) ||
+                   e.bearing != static_cast<float>(std::atan2(ey, ex)) ||
+                   raw != (v.mirrored ? -e.bearing : e.bearing);
+        }
+      }
+      QVERIFY2(wrong == 0,
+               qPrintable(QString("sub-cell (%1, %2): %3 entries differ from the formula")
+                              .arg(qx)
+                              .arg(qy)
+                              .arg(wrong)));
+    }
+  }
+  // Half the tables: 4 × 2 of 257² entries of 8 bytes, and the padding of 7 entries.
+  QCOMPARE(tables.bytes(), std::size_t{(8 * 257 * 257 + 7) * 8});
+  // Only a power of two keeps the sub-cell centres, and so the mirror, exact.
+  QVERIFY_THROWS_EXCEPTION(std::invalid_argument, sg::BeamTables(0.05, 4, 3));
+  QCOMPARE(sg::BeamTables(0.05, 4, 1).view(0, 0).mirrored, false);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -79,12 +79,18 @@ struct ConeSpan {
 // One row of a cone: `count` cells, consecutive in the grid from linear index `cell`, whose table
 // entries are entries[0 .. count), every one of them within the reach and the half-angle.
 // `heading` is the sensor's heading, moved by a whole turn in a row whose bearings lie across the
-// ±π line from it: there bearing − heading is the angle off the axis with no wrap per cell.
+// ±π line from it: there bearing − heading is the angle off the axis with no wrap per cell. In a
+// row of a mirrored table (BeamTables::View) the bearings are the true ones negated, and so are
+// `heading` and `axis`: bearing − heading is then the angle off the axis negated, bit for bit, and
+// its absolute value the same. `axis` is the sensor's heading wrapped to [-π, π) (negated there),
+// which the row's bearings are compared with before the turn.
 struct ConeRow {
   std::uint32_t cell;
   int count;
   const BeamTables::Entry* entries;
   double heading;
+  double axis;
+  bool mirrored;
 };
 
 // row(const ConeRow&) for every row of grid cells whose centres lie within `reach` metres of the
@@ -161,28 +167,31 @@ template <bool kRound = false, class Reserve, class RowFn>
   });
   reserve(bound);
 
-  const BeamTables::Entry* t = tables.table(qx, qy);
-  const int side = tables.side();
+  const BeamTables::View view = tables.view(qx, qy);
+  // The heading the view's bearings are compared with: negated with them in a mirrored table, so
+  // that every difference below is the true one negated, its absolute value and its turn's test
+  // the same bits.
+  const double hv = view.mirrored ? -h : h;
   const float reachF = static_cast<float>(reach);
   // The per-cell test. Where |bearing − heading| <= halfAngle already, the turn is 0 (and adding
   // 0.0 changes no bit that abs() keeps), so the test stands; only the other cells, most of them
   // rejected, pay for the turn.
   auto accepts = [&](const BeamTables::Entry& e) {
     if (!(e.distance <= reachF)) return false;
-    const double raw = static_cast<double>(e.bearing) - h;
+    const double raw = static_cast<double>(e.bearing) - hv;
     return std::abs(raw) <= halfAngle || std::abs(raw + detail::turn(raw)) <= halfAngle;
   };
   // The table is megabytes and a reading touches a few thousand bytes of it, scattered over its
   // rows: ask for all of them before the first is needed, so the misses overlap instead of
   // stalling the row loop one after another.
   for (const ConeSpan& span : spans) {
-    const BeamTables::Entry* entries = t + (span.dy + r) * side + r;
+    const BeamTables::Entry* entries = view.row(span.dy);
     const char* first = reinterpret_cast<const char*>(entries + span.dx0);
     const char* last = reinterpret_cast<const char*>(entries + span.dx1);
     for (const char* line = first; line <= last + 63; line += 64) __builtin_prefetch(line);
   }
   for (const ConeSpan& span : spans) {
-    const BeamTables::Entry* entries = t + (span.dy + r) * side + r;
+    const BeamTables::Entry* entries = view.row(span.dy);
     // The cone meets a row of cell centres in one interval: the accepted cells of the span are
     // contiguous (along a row the distance falls then rises, and the bearing is monotonic and on
     // one side of the ±π line, as no row of centres passes through the apex), so trimming the
@@ -193,9 +202,9 @@ template <bool kRound = false, class Reserve, class RowFn>
     if (dx0 > dx1) continue;
     // The accepted cells of one row are all on one side of the ±π line: the same correction
     // serves them all.
-    const double rowHeading = h - detail::turn(static_cast<double>(entries[dx0].bearing) - h);
+    const double rowHeading = hv - detail::turn(static_cast<double>(entries[dx0].bearing) - hv);
     row(ConeRow{static_cast<std::uint32_t>((iv + span.dy) * grid.width + iu + dx0), dx1 - dx0 + 1,
-                entries + dx0, rowHeading});
+                entries + dx0, rowHeading, hv, view.mirrored});
   }
 }
 
@@ -205,13 +214,13 @@ template <bool kRound = false, class Reserve, class RowFn>
 template <class Reserve, class Fn>
 void forEachConeCell(const Pose2D& sensor, double reach, double halfAngle, const GridSpec& grid,
                      const BeamTables& tables, Reserve&& reserve, Fn&& fn) {
-  const double h = wrapAngle(sensor.heading);
   forEachConeRow(sensor, reach, halfAngle, grid, tables, std::forward<Reserve>(reserve),
                  [&](const ConeRow& row) {
                    for (int k = 0; k < row.count; ++k) {
                      const BeamTables::Entry e = row.entries[k];
+                     const double theta = detail::offAxis(e.bearing, row.axis);
                      fn(row.cell + static_cast<std::uint32_t>(k), static_cast<double>(e.distance),
-                        detail::offAxis(e.bearing, h));
+                        row.mirrored ? -theta : theta);
                    }
                  });
 }

@@ -153,7 +153,6 @@ struct RowJob {
   const ConeRow* row;
   const ConeBeam<Shape>* cones;  // K, one per lane
   const float* reachF;           // K: each lane's reach as forEachConeRow compares it
-  double heading;                // the sensor's, wrapped as forEachConeRow wraps it
   bool vsdns, map;
   LaneState* state;
   // A uniform batch's lanes differ only in these of their shapes (the rest is cones[0]'s).
@@ -217,7 +216,7 @@ SG_BATCH_CLONES void batchRow(const RowJob& job) {
   const std::size_t need = static_cast<std::size_t>(n + lanes::kWidth) * kBatchLanes;
   if (st.values.size() < need) st.values.resize(need);
   float* const values = st.values.data();
-  const double h = job.heading;
+  const double h = row.axis;  // the sensor's heading as the row's bearings see it (ConeRow)
   Longs lo, hi;
   int first = n, last = -1;
   for (int k = 0; k < K; ++k) {
@@ -381,8 +380,7 @@ bool mapBatch(const std::vector<Beam>& beams, const GridSpec& grid, const BeamTa
     for (const std::uint32_t i : inBand[static_cast<std::size_t>(b)]) {
       const Beam& beam = beams[i];
       rc.prepare(beam, lanes);
-      RowJob job{nullptr, rc.cones, rc.reachF, wrapAngle(beam.sensor.heading), vsdns, map, &st, {},
-                 {},      {},       {}};
+      RowJob job{nullptr, rc.cones, rc.reachF, vsdns, map, &st, {}, {}, {}, {}};
       if (st.uniform) {
         for (int k = 0; k < K; ++k) {
           job.p1[k] = rc.cones[k].shape.p1;
