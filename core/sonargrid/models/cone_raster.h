@@ -30,12 +30,13 @@ namespace sg {
 
 namespace detail {
 
-// Narrows [lo, hi] to the x with a * x <= b.
-inline void clip(double a, double b, double& lo, double& hi) {
+// Narrows [lo, hi] to the x with a * x <= b, given inv = 1 / a: b * inv is b / a to an ulp or
+// two, which the spans' slack (forEachConeRow) covers many times over, without a division per row.
+inline void clip(double a, double inv, double b, double& lo, double& hi) {
   if (a > 0.0)
-    hi = std::min(hi, b / a);
+    hi = std::min(hi, b * inv);
   else if (a < 0.0)
-    lo = std::max(lo, b / a);
+    lo = std::max(lo, b * inv);
   else if (b < 0.0)
     hi = -std::numeric_limits<double>::infinity();
 }
@@ -142,6 +143,7 @@ template <bool kRound = false, class Reserve, class RowFn>
       std::max({-r, detail::floorToInt(ay - 0.5 + bottom - kSlack) - 1, -iv, window.begin - iv});
   const int dy1 = std::min({r, detail::ceilToInt(ay - 0.5 + top + kSlack) + 1, grid.height - 1 - iv,
                             window.end - 1 - iv});
+  const double inv1 = 1.0 / d1y, inv2 = 1.0 / -d2y;  // for clip(), unused where 0
   // Per thread, so workers never share it; row must not call forEachConeRow itself.
   thread_local std::vector<ConeSpan> spans;
   spans.clear();
@@ -155,8 +157,8 @@ template <bool kRound = false, class Reserve, class RowFn>
     double lo = -half, hi = half;
     // The wedge: left of the right edge, cross(d1, p) >= -slack, and right of the left edge,
     // cross(p, d2) >= -slack (a wedge narrower than 180° is the meet of the two half-planes).
-    detail::clip(d1y, d1x * y + kSlack, lo, hi);
-    detail::clip(-d2y, -d2x * y + kSlack, lo, hi);
+    detail::clip(d1y, inv1, d1x * y + kSlack, lo, hi);
+    detail::clip(-d2y, inv2, -d2x * y + kSlack, lo, hi);
     if (!(lo <= hi)) return;
     // Cell dx has its centre at x = dx + 0.5 - ax; lo and hi are within ±(R + kSlack).
     const int dx0 = std::max({-r, detail::ceilToInt<kRound>(lo - 0.5 + ax), -iu});
