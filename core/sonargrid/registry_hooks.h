@@ -11,7 +11,7 @@
 #include "sonargrid/rules/update_rule.h"
 
 namespace sg {
-enum class ConeLanes : int;  // cone_model.h
+enum class ConeLanes : int;  // lanes.h
 }  // namespace sg
 
 namespace sg::testing {
@@ -25,10 +25,11 @@ using UpdateRuleWrapper = std::function<std::unique_ptr<UpdateRule>(std::unique_
 void wrapSensorModels(SensorModelWrapper wrap);
 void wrapUpdateRules(UpdateRuleWrapper wrap);
 
-// The widest code the cone models may evaluate their rows with where the CPU has it
-// (ConeLanes, cone_model.h: the baseline's four lanes, eight with AVX2, eight with AVX-512; by
-// default the widest), so that a test on a machine with AVX-512 checks all three. Set it only
-// while no mapper is mapping. Returns the previous setting.
+// The widest code the cone models may evaluate their rows with, and the rules' run kernels update
+// cells with, where the CPU has it (ConeLanes, lanes.h: the baseline's four lanes, eight with AVX2,
+// eight with AVX-512, where the run kernels take eight masked lanes; by default the widest), so
+// that a test on a machine with AVX-512 checks all of them. Set it only while no mapper is
+// mapping. Returns the previous setting.
 ConeLanes limitConeLanes(ConeLanes widest);
 
 }  // namespace sg::testing

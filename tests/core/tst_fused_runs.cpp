@@ -136,6 +136,17 @@ MapperSettings rowSettings(const std::string& model, const std::string& rule, bo
 
 }  // namespace
 
+// testing::limitConeLanes for its lifetime: the cone rows' lanes and the run kernels' (masked
+// eight where the CPU has AVX-512, else four), so that a machine with AVX-512 checks both.
+struct LaneLimit {
+  explicit LaneLimit(ConeLanes widest) : previous(testing::limitConeLanes(widest)) {}
+  ~LaneLimit() { testing::limitConeLanes(previous); }
+  LaneLimit(const LaneLimit&) = delete;
+  LaneLimit& operator=(const LaneLimit&) = delete;
+  ConeLanes previous;
+};
+constexpr ConeLanes kRunLanes[] = {ConeLanes::Avx512, ConeLanes::Four};
+
 class TstFusedRuns : public QObject {
   Q_OBJECT
 
@@ -149,6 +160,7 @@ class TstFusedRuns : public QObject {
   void runsGiveApplysBits_data();
   void runsGiveApplysBits();
   void deferredRunsGiveApplysBits();
+  void occupiedTotalAtEveryWidth();
 };
 
 void TstFusedRuns::runsGiveTheFootprintPathsBits_data() {
@@ -461,31 +473,36 @@ void TstFusedRuns::runsGiveApplysBits() {
                                 CellEvidence(0, nan, 0.0, nan)};
   constexpr std::size_t kKinds = sizeof kinds / sizeof kinds[0];
   // Five times, the cells one further along each time: every value then meets each of the five
-  // kinds of cell preparedGrid() makes (certain evidence against a certain cell among them).
-  for (std::uint32_t shift = 0; shift < 5; ++shift) {
-    EvidenceRuns runs;
-    Footprint footprint;
-    std::uint32_t cell = 1 + shift;
-    std::size_t v = 0;
-    for (const int count : {1, 2, 3, 4, 5, 6, 7, 8, 9, 15, 16, 17, 19}) {
-      runs.runs.push_back(EvidenceRuns::Run{cell, count, static_cast<std::uint32_t>(v)});
-      for (int k = 0; k < count; ++k, ++v) {
-        CellEvidence c = kinds[(v * 7) % kKinds];  // 7 is prime to the 11 kinds
-        c.cell = cell + static_cast<std::uint32_t>(k);
-        appendCell(c, runs, footprint);
+  // kinds of cell preparedGrid() makes (certain evidence against a certain cell among them). With
+  // the masked kernels and with the four lanes.
+  for (const ConeLanes lanes : kRunLanes)
+    for (std::uint32_t shift = 0; shift < 5; ++shift) {
+      const LaneLimit limit(lanes);
+      EvidenceRuns runs;
+      Footprint footprint;
+      std::uint32_t cell = 1 + shift;
+      std::size_t v = 0;
+      for (const int count : {1, 2, 3, 4, 5, 6, 7, 8, 9, 15, 16, 17, 19}) {
+        runs.runs.push_back(EvidenceRuns::Run{cell, count, static_cast<std::uint32_t>(v)});
+        for (int k = 0; k < count; ++k, ++v) {
+          CellEvidence c = kinds[(v * 7) % kKinds];  // 7 is prime to the 11 kinds
+          c.cell = cell + static_cast<std::uint32_t>(k);
+          appendCell(c, runs, footprint);
+        }
+        cell += static_cast<std::uint32_t>(count) + 1;  // a cell left out between runs
       }
-      cell += static_cast<std::uint32_t>(count) + 1;  // a cell left out between runs
+      QVERIFY(cell <= kCells);
+      padRuns(runs);
+      Grid oracle = preparedGrid(*r, kCells), viaRuns = preparedGrid(*r, kCells);
+      r->apply(footprint, oracle);
+      EvidenceRuns deferred;
+      r->applyRuns(runs, viaRuns, &deferred);
+      QVERIFY(deferred.runs.empty());
+      QVERIFY2(sameGrid(rule.toStdString(), oracle, viaRuns),
+               qPrintable(QString("shift %1, lanes %2: the grid differs from apply()'s")
+                              .arg(shift)
+                              .arg(static_cast<int>(lanes))));
     }
-    QVERIFY(cell <= kCells);
-    padRuns(runs);
-    Grid oracle = preparedGrid(*r, kCells), viaRuns = preparedGrid(*r, kCells);
-    r->apply(footprint, oracle);
-    EvidenceRuns deferred;
-    r->applyRuns(runs, viaRuns, &deferred);
-    QVERIFY(deferred.runs.empty());
-    QVERIFY2(sameGrid(rule.toStdString(), oracle, viaRuns),
-             qPrintable(QString("shift %1: the grid differs from apply()'s").arg(shift)));
-  }
 }
 
 void TstFusedRuns::deferredRunsGiveApplysBits() {
@@ -521,46 +538,84 @@ void TstFusedRuns::deferredRunsGiveApplysBits() {
   // holds values other than 0 and 1 (normalised, a one-cell footprint's evidence scales to 1).
   const std::unique_ptr<UpdateRule> preparing = configuredRule("addition");
   EvidenceRuns deferred;
-  for (std::uint32_t shift = 0; shift < 5; ++shift) {
-    EvidenceRuns runs;
-    Footprint footprint;
-    std::uint32_t cell = 1 + shift;
-    std::size_t v = 0;
-    std::size_t nonZero = 0;
-    for (const std::vector<float>& occupied : occupiedOf) {
-      const int count = static_cast<int>(occupied.size());
-      runs.runs.push_back(EvidenceRuns::Run{cell, count, static_cast<std::uint32_t>(v)});
-      for (int k = 0; k < count; ++k, ++v) {
-        // The cone's empty evidence before the arc, none on it.
-        const float o = occupied[static_cast<std::size_t>(k)];
-        const bool arc = o != 0.0f;
-        nonZero += arc ? 1 : 0;
-        CellEvidence c(cell + static_cast<std::uint32_t>(k), arc ? 0.0 : 0.3, 0.0, 0.5);
-        c.occupied = o;
-        appendCell(c, runs, footprint);
+  for (const ConeLanes lanes : kRunLanes)
+    for (std::uint32_t shift = 0; shift < 5; ++shift) {
+      const LaneLimit limit(lanes);
+      EvidenceRuns runs;
+      Footprint footprint;
+      std::uint32_t cell = 1 + shift;
+      std::size_t v = 0;
+      std::size_t nonZero = 0;
+      for (const std::vector<float>& occupied : occupiedOf) {
+        const int count = static_cast<int>(occupied.size());
+        runs.runs.push_back(EvidenceRuns::Run{cell, count, static_cast<std::uint32_t>(v)});
+        for (int k = 0; k < count; ++k, ++v) {
+          // The cone's empty evidence before the arc, none on it.
+          const float o = occupied[static_cast<std::size_t>(k)];
+          const bool arc = o != 0.0f;
+          nonZero += arc ? 1 : 0;
+          CellEvidence c(cell + static_cast<std::uint32_t>(k), arc ? 0.0 : 0.3, 0.0, 0.5);
+          c.occupied = o;
+          appendCell(c, runs, footprint);
+        }
+        cell += static_cast<std::uint32_t>(count) + 1;
       }
-      cell += static_cast<std::uint32_t>(count) + 1;
+      QVERIFY(cell <= kCells);
+      padRuns(runs);
+      Grid oracle = preparedGrid(*preparing, kCells), viaRuns = preparedGrid(*preparing, kCells);
+      r->apply(footprint, oracle);
+      deferred.clear();
+      r->applyRuns(runs, viaRuns, &deferred);
+      // The spans, counted by hand from occupiedOf: runs 2, 3, 4, 6, 7, 8, 9, 10 and 11 have one,
+      // of 1, 1, 3, 1, 1, 4, 1, 2 and 7 cells (21); the 14 values other than ±0 (NaN, −0.1 and the
+      // denormal among them) lie in them, with 7 zeros between.
+      QCOMPARE(deferred.runs.size(), std::size_t{9});
+      std::size_t deferredCells = 0;
+      for (const EvidenceRuns::Run& run : deferred.runs)
+        deferredCells += static_cast<std::size_t>(run.count);
+      QCOMPARE(deferredCells, std::size_t{21});
+      QCOMPARE(nonZero, std::size_t{14});
+      QCOMPARE(occupiedFixedPoint(deferred), occupiedFixedPoint(footprint));
+      r->applyDeferred(deferred, FootprintTotals{occupiedFixedPoint(deferred)}, viaRuns);
+      QVERIFY2(sameGrid("addition", oracle, viaRuns),
+               qPrintable(QString("shift %1, lanes %2: the grid differs from apply()'s")
+                              .arg(shift)
+                              .arg(static_cast<int>(lanes))));
     }
-    QVERIFY(cell <= kCells);
-    padRuns(runs);
-    Grid oracle = preparedGrid(*preparing, kCells), viaRuns = preparedGrid(*preparing, kCells);
-    r->apply(footprint, oracle);
-    deferred.clear();
-    r->applyRuns(runs, viaRuns, &deferred);
-    // The spans, counted by hand from occupiedOf: runs 2, 3, 4, 6, 7, 8, 9, 10 and 11 have one,
-    // of 1, 1, 3, 1, 1, 4, 1, 2 and 7 cells (21); the 14 values other than ±0 (NaN, −0.1 and the
-    // denormal among them) lie in them, with 7 zeros between.
-    QCOMPARE(deferred.runs.size(), std::size_t{9});
-    std::size_t deferredCells = 0;
-    for (const EvidenceRuns::Run& run : deferred.runs)
-      deferredCells += static_cast<std::size_t>(run.count);
-    QCOMPARE(deferredCells, std::size_t{21});
-    QCOMPARE(nonZero, std::size_t{14});
-    QCOMPARE(occupiedFixedPoint(deferred), occupiedFixedPoint(footprint));
-    r->applyDeferred(deferred, FootprintTotals{occupiedFixedPoint(deferred)}, viaRuns);
-    QVERIFY2(sameGrid("addition", oracle, viaRuns),
-             qPrintable(QString("shift %1: the grid differs from apply()'s").arg(shift)));
+}
+
+void TstFusedRuns::occupiedTotalAtEveryWidth() {
+  // A reading's occupied total from its runs (occupiedFixedPoint, in eight masked lanes where the
+  // CPU has AVX-512), on values at the conversion's edges: each share is the value times 2^40
+  // truncated, NaN 0, clamped to ±2^22 first; the sum is modulo 2^64.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float values[] = {nan, 0.5f, 1e30f, -1e30f, -0.0f, 1e-40f, 0.25f, -0.5f, 3.0f};
+  // By hand, one of each: 0 + 2^39 + 2^62 − 2^62 + 0 + 0 (1e-40 × 2^40 < 1) + 2^38 − 2^39 +
+  // 3 × 2^40 = 13 × 2^38. Runs of 1, 8, 9, 17 and 2 cells (37 = 4 × 9 + 1) hold each value four
+  // times and NaN once more: 52 × 2^38, the four 2^62 having wrapped the sum past 2^64 on the way.
+  // (An odd count of NaN: a NaN converted without the check gives 2^63, and an even count of those
+  // would cancel modulo 2^64.)
+  constexpr std::int64_t kExpected = std::int64_t{52} << 38;
+  EvidenceRuns runs;
+  std::size_t v = 0;
+  std::uint32_t cell = 0;
+  for (const int count : {1, 8, 9, 17, 2}) {
+    runs.runs.push_back(EvidenceRuns::Run{cell, count, static_cast<std::uint32_t>(v)});
+    for (int k = 0; k < count; ++k, ++v) runs.occupied.push_back(values[v % 9]);
+    cell += static_cast<std::uint32_t>(count) + 3;
   }
+  QCOMPARE(v, std::size_t{37});
+  runs.empty.assign(runs.occupied.size(), 0.0f);
+  runs.probability.assign(runs.occupied.size(), 0.5f);
+  padRuns(runs);
+  for (const ConeLanes lanes : kRunLanes) {
+    const LaneLimit limit(lanes);
+    QCOMPARE(occupiedFixedPoint(runs), kExpected);
+  }
+  // And the scalar share of each, which the footprint path sums.
+  QCOMPARE(occupiedFixedPoint(1e30f), std::int64_t{1} << 62);
+  QCOMPARE(occupiedFixedPoint(-1e30f), -(std::int64_t{1} << 62));
+  QCOMPARE(occupiedFixedPoint(1e-40f), std::int64_t{0});
 }
 
 QTEST_APPLESS_MAIN(TstFusedRuns)

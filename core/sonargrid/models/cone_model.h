@@ -33,10 +33,6 @@ struct ConeValue {
   T pE, pO, p;
 };
 
-// The code a cone model's rows are evaluated with: four float lanes (any x86-64), or eight built
-// for AVX2, or the same eight built for AVX-512. Every one gives the same bits.
-enum class ConeLanes : int { Four, Avx2, Avx512 };
-
 // One reading of a cone model: whether it writes anything, how far and how wide, and its shape.
 template <class Shape>
 struct ConeBeam {
@@ -257,10 +253,6 @@ __attribute__((target("avx2,avx512f,avx512vl,avx512bw,avx512dq"))) void coneRuns
   coneRunsIn<Shape, lanes::kWideWidth>(pb, beam, grid, tables, window, out);
 }
 #endif
-
-// What coneRuns() evaluates rows with: the widest of ConeLanes the CPU has, unless a test asked
-// for less (testing::limitConeLanes, registry_hooks.h).
-ConeLanes coneLanes();
 
 // The cells of coneFootprint(), as runs.
 template <class Shape>

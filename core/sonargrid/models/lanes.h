@@ -11,6 +11,20 @@
 #include <cstring>
 #include <type_traits>
 
+namespace sg {
+
+// The code a cone model's rows are evaluated with: four float lanes (any x86-64), or eight built
+// for AVX2, or the same eight built for AVX-512; and the rules' run kernels (run_kernels.cpp):
+// four double lanes (any x86-64, or AVX2), or eight with masks built for AVX-512. Every one gives
+// the same bits.
+enum class ConeLanes : int { Four, Avx2, Avx512 };
+
+// What coneRuns() evaluates rows with, and the run kernels update cells with: the widest of
+// ConeLanes the CPU has, unless a test asked for less (testing::limitConeLanes, registry_hooks.h).
+ConeLanes coneLanes();
+
+}  // namespace sg
+
 namespace sg::lanes {
 
 using Floats = float __attribute__((vector_size(16)));

@@ -9,7 +9,8 @@
 // to float on store, as cell_updates.h does one cell at a time. Dempster–Shafer computes in float,
 // as cell_updates.h does, in eight float lanes (a run's cells, or listed ones); its cells with both
 // kinds of evidence (which no model gives) go through cell_updates.h itself, one at a time.
-// Addition's deferral (occupiedSpans) looks at eight values at a time too.
+// Addition's deferral (occupiedSpans) looks at eight values at a time too. Where the CPU has
+// AVX-512, the run kernels take eight double lanes with masks instead (SG_MASKED_RUNS, below).
 #include "sonargrid/rules/run_kernels.h"
 
 #include <algorithm>
@@ -17,7 +18,21 @@
 #include <cstring>
 #include <span>
 
+#include "sonargrid/models/lanes.h"
 #include "sonargrid/rules/cell_updates.h"
+
+// On x86-64 with GCC, each kernel that updates runs also has a version in eight double lanes with
+// masks, built for AVX-512 and chosen at run time where the CPU has it (coneLanes(), lanes.h): a
+// lane the mask leaves out neither loads nor stores, so a run's last cells need no copy and no
+// branch on the run's length. The lanes do the same operations as the four-lane version's.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define SG_MASKED_RUNS 1
+#include <immintrin.h>
+#define SG_MASKED_TARGET target("avx2,avx512f,avx512vl,avx512bw,avx512dq")
+// A helper or lambda inlined into the masked kernels (a lambda does not inherit its function's
+// target).
+#define SG_MASKED_INLINE __attribute__((SG_MASKED_TARGET, always_inline))
+#endif
 
 // The clones' resolver (an ifunc) runs while the dynamic loader relocates the program, before a
 // sanitizer's runtime is set up, and an instrumented one crashes the program at start; under
@@ -76,6 +91,53 @@ using Floats = float __attribute__((vector_size(4 * W)));
 // for any v (NaN and ±0 included) when lo <= hi.
 [[gnu::always_inline]] inline Doubles clamp(Doubles v, double lo, double hi) {
   return v < lo ? splat(lo) : (hi < v ? splat(hi) : v);
+}
+
+// x in every lane of V, and std::clamp per lane as clamp() above, for V of any width.
+template <class V>
+[[gnu::always_inline]] inline V splatAs(double x) {
+  V v;
+  for (std::size_t j = 0; j < sizeof(V) / sizeof(double); ++j) v[j] = x;
+  return v;
+}
+template <class V>
+[[gnu::always_inline]] inline V clampAs(V v, double lo, double hi) {
+  return v < lo ? splatAs<V>(lo) : (hi < v ? splatAs<V>(hi) : v);
+}
+
+// Each rule's update of a cell's double m in lanes, as cell_updates.h does it one cell at a time,
+// for the four-lane kernels and the masked eight.
+// Probability addition of evidence x (cellrule::additionEmpty, additionOccupied).
+template <class V>
+[[gnu::always_inline]] inline V additionLanes(V m, V x) {
+  return x > 0.0 ? m + x - m * x : m;
+}
+// Bayes with the probability p (cellrule::bayes).
+template <class V>
+[[gnu::always_inline]] inline V bayesLanes(V m, V p) {
+  const V num = p * m;
+  const V den = num + (1.0 - p) * (1.0 - m);
+  return den > 0.0 ? num / den : m;
+}
+// Paper 001's evidence as a probability (cellrule::bayesEvidence).
+template <class V>
+[[gnu::always_inline]] inline V bayesEvidenceLanes(V empty, V occupied) {
+  return 0.5 + 0.5 * (occupied - empty);
+}
+// The log update's product (cellrule::logProduct).
+template <class V>
+[[gnu::always_inline]] inline V logLanes(V m, V empty, V occupied) {
+  const V product = m * ((1.0 - empty) * (1.0 + occupied));
+  const auto tiny = (product < cellrule::kLogLow) & (product > 0.0);
+  return product > cellrule::kLogHigh ? splatAs<V>(cellrule::kLogHigh)
+                                      : (tiny ? splatAs<V>(cellrule::kLogLow) : product);
+}
+// Clamped log-odds on the odds (cellrule::logOdds).
+template <class V>
+[[gnu::always_inline]] inline V logOddsLanes(V odds, V probability, double invPrior, double minOdds,
+                                             double maxOdds) {
+  const V p = clampAs(probability, cellrule::kProbabilityFloor, 1.0 - cellrule::kProbabilityFloor);
+  return clampAs(odds * (p / (1.0 - p)) * invPrior, minOdds, maxOdds);
 }
 
 // `Bytes` bytes from src to dst in moves of W doubles where they fit: a run's last cells are copied
@@ -274,16 +336,208 @@ static_assert(sizeof(LogOddsCell) == sizeof(double));
 static_assert(sizeof(DempsterShaferCell) == 2 * sizeof(float) &&
               sizeof(DempsterShaferCell) == sizeof(double));
 
+// occupiedSpans()' part of a run with evidence: values lo .. hi − 1 of `run` (whose occupied
+// values start at `occupied`) appended to `deferred` from value `used` (which it advances), with
+// kRunPadding zeros past them, which the lanes read from a short run's start and throw away
+// (eachGroup).
+inline void deferSpan(const EvidenceRuns::Run& run, const float* occupied, int lo, int hi,
+                      EvidenceRuns& deferred, std::size_t& used) {
+  const auto count = static_cast<std::size_t>(hi - lo);
+  const std::size_t room = used + count + kRunPadding;
+  if (deferred.occupied.size() < room) deferred.occupied.resize(room);
+  std::copy_n(occupied + lo, count, deferred.occupied.data() + used);
+  std::fill_n(deferred.occupied.data() + used + count, kRunPadding, 0.0f);
+  deferred.runs.push_back(
+      {run.cell + static_cast<std::uint32_t>(lo), hi - lo, static_cast<std::uint32_t>(used)});
+  used += count;
+}
+
+#ifdef SG_MASKED_RUNS
+// The masked kernels' lanes: eight doubles, and the eight floats they widen from and narrow to.
+using Doubles8 = double __attribute__((vector_size(64)));
+
+// The lanes of `mask` loaded from p (the others 0, and nothing read for them), and stored to p
+// (nothing written for the others): doubles, or floats widened and rounded back as widen() and
+// narrow() do.
+SG_MASKED_INLINE inline Doubles8 load8(__mmask8 mask, const void* p) {
+  return reinterpret_cast<Doubles8>(_mm512_maskz_loadu_pd(mask, p));
+}
+SG_MASKED_INLINE inline void store8(__mmask8 mask, void* p, Doubles8 v) {
+  _mm512_mask_storeu_pd(p, mask, reinterpret_cast<__m512d>(v));
+}
+SG_MASKED_INLINE inline Doubles8 widen8(__mmask8 mask, const void* p) {
+  // One conversion of all eight (__builtin_convertvector made two of four and a merge); the
+  // masked form, as the plain one trips GCC 12's -Wmaybe-uninitialized in its own header.
+  return reinterpret_cast<Doubles8>(_mm512_maskz_cvtps_pd(mask, _mm256_maskz_loadu_ps(mask, p)));
+}
+SG_MASKED_INLINE inline void narrow8(__mmask8 mask, void* p, Doubles8 v) {
+  _mm256_mask_storeu_ps(p, mask, reinterpret_cast<__m256>(__builtin_convertvector(v, Floats8)));
+}
+
+// group(mask, empty, occupied, probability, cells) for every eight consecutive cells of every run,
+// the last group of a run masked to its cells: eachGroup() without the copies. `occupiedOnly` as
+// in eachGroup().
+template <class Cell, class Group>
+SG_MASKED_INLINE inline void eachMasked(const EvidenceRuns& runs, Cell* plane, Group&& group,
+                                        bool occupiedOnly = false) {
+  const float* const occupied = runs.occupied.data();
+  const float* const empty = occupiedOnly ? occupied : runs.empty.data();
+  const float* const probability = occupiedOnly ? occupied : runs.probability.data();
+  for (const EvidenceRuns::Run& run : runs.runs) {
+    Cell* const cells = plane + run.cell;
+    const std::size_t v = run.first;
+    const int n = run.count;  // a local: the cells' stores could otherwise alias it
+    for (int k = 0; k < n; k += 8) {
+      const auto mask = static_cast<__mmask8>((1u << std::min(n - k, 8)) - 1u);
+      group(mask, empty + v + k, occupied + v + k, probability + v + k, cells + k);
+    }
+  }
+}
+
+// Whether the run kernels take eight masked lanes (the CPU has AVX-512, and no test limited the
+// lanes below it).
+bool masked() {
+  return coneLanes() == ConeLanes::Avx512;
+}
+
+__attribute__((SG_MASKED_TARGET)) void additionEmptyMasked(const EvidenceRuns& runs,
+                                                           EmptyEvidence* emp) {
+  eachMasked(runs, emp,
+             [](__mmask8 m, const float* empty, const float*, const float*, EmptyEvidence* cells)
+                 SG_MASKED_INLINE {
+                   narrow8(m, cells, additionLanes(widen8(m, cells), widen8(m, empty)));
+                 });
+}
+
+__attribute__((SG_MASKED_TARGET)) void additionOccupiedMasked(const EvidenceRuns& runs,
+                                                              OccupiedEvidence* occ, double scale) {
+  eachMasked(
+      runs, occ,
+      [scale](__mmask8 m, const float*, const float* occupied, const float*,
+              OccupiedEvidence* cells) SG_MASKED_INLINE {
+        narrow8(m, cells, additionLanes(widen8(m, cells), widen8(m, occupied) * scale));
+      },
+      true);
+}
+
+__attribute__((SG_MASKED_TARGET)) void bayesMasked(const EvidenceRuns& runs, BayesCell* plane,
+                                                   bool likelihood) {
+  if (likelihood) {
+    eachMasked(runs, plane,
+               [](__mmask8 m, const float*, const float*, const float* probability,
+                  BayesCell* cells) SG_MASKED_INLINE {
+                 store8(m, cells, bayesLanes(load8(m, cells), widen8(m, probability)));
+               });
+  } else {
+    eachMasked(runs, plane,
+               [](__mmask8 m, const float* empty, const float* occupied, const float*,
+                  BayesCell* cells) SG_MASKED_INLINE {
+                 const Doubles8 p = bayesEvidenceLanes(widen8(m, empty), widen8(m, occupied));
+                 store8(m, cells, bayesLanes(load8(m, cells), p));
+               });
+  }
+}
+
+__attribute__((SG_MASKED_TARGET)) void logProductMasked(const EvidenceRuns& runs, LogCell* plane) {
+  eachMasked(runs, plane,
+             [](__mmask8 m, const float* empty, const float* occupied, const float*,
+                LogCell* cells) SG_MASKED_INLINE {
+               store8(m, cells, logLanes(load8(m, cells), widen8(m, empty), widen8(m, occupied)));
+             });
+}
+
+__attribute__((SG_MASKED_TARGET)) void logOddsMasked(const EvidenceRuns& runs, LogOddsCell* plane,
+                                                     double invPrior, double minOdds,
+                                                     double maxOdds) {
+  eachMasked(
+      runs, plane,
+      [=](__mmask8 m, const float*, const float*, const float* probability,
+          LogOddsCell* cells) SG_MASKED_INLINE {
+        store8(m, cells,
+               logOddsLanes(load8(m, cells), widen8(m, probability), invPrior, minOdds, maxOdds));
+      });
+}
+
+__attribute__((SG_MASKED_TARGET)) void occupiedSpansMasked(const EvidenceRuns& runs,
+                                                           EvidenceRuns& deferred) {
+  std::size_t used = deferred.valuesEnd();
+  for (const EvidenceRuns::Run& run : runs.runs) {
+    const float* const occupied = runs.occupied.data() + run.first;
+    const int n = run.count;
+    // A bit for each value not ±0 (unordered or not equal: NaN counts, as in the plain kernel).
+    int lo = -1, hi = 0;
+    for (int k = 0; k < n; k += 8) {
+      const auto mask = static_cast<__mmask8>((1u << std::min(n - k, 8)) - 1u);
+      const unsigned bits = _mm256_mask_cmp_ps_mask(mask, _mm256_maskz_loadu_ps(mask, occupied + k),
+                                                    _mm256_setzero_ps(), _CMP_NEQ_UQ);
+      if (bits == 0) continue;
+      if (lo < 0) lo = k + __builtin_ctz(bits);
+      hi = k + 32 - __builtin_clz(bits);
+    }
+    if (lo >= 0) deferSpan(run, occupied, lo, hi, deferred, used);
+  }
+}
+
+__attribute__((SG_MASKED_TARGET)) std::int64_t occupiedTotalMasked(const EvidenceRuns& runs) {
+  // Each value's share as occupiedFixedPoint(float) computes it (NaN 0, clamped to ±2^22, times
+  // 2^40, truncated), summed in 64-bit lanes modulo 2^64: the same sum in any order.
+  const Doubles8 zero{}, lo = splatAs<Doubles8>(-0x1p22), hi = splatAs<Doubles8>(0x1p22);
+  __m512i sum = _mm512_setzero_si512();
+  for (const EvidenceRuns::Run& run : runs.runs) {
+    const float* const occupied = runs.occupied.data() + run.first;
+    const int n = run.count;
+    for (int k = 0; k < n; k += 8) {
+      const auto mask = static_cast<__mmask8>((1u << std::min(n - k, 8)) - 1u);
+      Doubles8 x = widen8(mask, occupied + k);
+      x = x == x ? x : zero;
+      x = x < lo ? lo : (hi < x ? hi : x);
+      sum = _mm512_add_epi64(sum, _mm512_cvttpd_epi64(reinterpret_cast<__m512d>(x * 0x1p40)));
+    }
+  }
+  std::uint64_t lanes[8];  // summed here: _mm512_reduce_add_epi64 trips GCC 12's -Wuninitialized
+  std::memcpy(lanes, &sum, sizeof lanes);
+  std::uint64_t total = 0;
+  for (const std::uint64_t share : lanes) total += share;
+  return static_cast<std::int64_t>(total);
+}
+
+__attribute__((SG_MASKED_TARGET)) void dempsterShaferMasked(const EvidenceRuns& runs,
+                                                            DempsterShaferCell* plane) {
+  using Floats16 = float __attribute__((vector_size(64)));
+  eachMasked(runs, plane,
+             [](__mmask8 m, const float* empty, const float* occupied, const float*,
+                DempsterShaferCell* cells) SG_MASKED_INLINE {
+               const auto o = reinterpret_cast<Floats8>(_mm256_maskz_loadu_ps(m, occupied));
+               const auto e = reinterpret_cast<Floats8>(_mm256_maskz_loadu_ps(m, empty));
+               // The cells as eight 8-byte pairs a b; a lane left out reads as −0, −0 (both
+               // signs set), which keeps the group on dempsterShaferLanes' usual case.
+               const auto ab = reinterpret_cast<Floats16>(_mm512_mask_loadu_epi64(
+                   _mm512_set1_epi64(static_cast<long long>(0x8000000080000000ull)), m, cells));
+               Floats8 a = __builtin_shufflevector(ab, ab, 0, 2, 4, 6, 8, 10, 12, 14);
+               Floats8 b = __builtin_shufflevector(ab, ab, 1, 3, 5, 7, 9, 11, 13, 15);
+               const int general = dempsterShaferLanes(o, e, a, b);
+               const Floats16 out = __builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11, 4, 12,
+                                                            5, 13, 6, 14, 7, 15);
+               _mm512_mask_storeu_epi64(cells, m, reinterpret_cast<__m512i>(out));
+               // A lane left out has no evidence (o = e = 0), so it is never general.
+               if (general != 0) {
+                 for (int j = 0; j < 8; ++j) {
+                   if (general & (1 << j)) generalDempsterShafer(occupied[j], empty[j], cells[j]);
+                 }
+               }
+             });
+}
+#endif
+
 }  // namespace
+
+// The four-lane kernels, cloned for AVX2.
+namespace plain {
 
 SG_RUN_CLONES void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp) {
   eachGroup(runs, emp,
             [](const float* empty, const float*, const float*, EmptyEvidence* cells)
-                SG_INLINE_LAMBDA {
-                  const Doubles e = widen(empty);
-                  const Doubles m = widen(cells);
-                  narrow(cells, e > 0.0 ? m + e - m * e : m);
-                });
+                SG_INLINE_LAMBDA { narrow(cells, additionLanes(widen(cells), widen(empty))); });
 }
 
 SG_RUN_CLONES void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ, double scale) {
@@ -292,12 +546,40 @@ SG_RUN_CLONES void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* 
   eachGroup(
       runs, occ,
       [scale](const float*, const float* occupied, const float*, OccupiedEvidence* cells)
-          SG_INLINE_LAMBDA {
-            const Doubles po = widen(occupied) * scale;
-            const Doubles m = widen(cells);
-            narrow(cells, po > 0.0 ? m + po - m * po : m);
-          },
+          SG_INLINE_LAMBDA { narrow(cells, additionLanes(widen(cells), widen(occupied) * scale)); },
       true);
+}
+
+SG_RUN_CLONES void bayes(const EvidenceRuns& runs, BayesCell* plane, bool likelihood) {
+  if (likelihood) {
+    eachGroup(runs, plane,
+              [&](const float*, const float*, const float* probability, BayesCell* cells)
+                  SG_INLINE_LAMBDA { store(cells, bayesLanes(load(cells), widen(probability))); });
+  } else {
+    eachGroup(runs, plane,
+              [&](const float* empty, const float* occupied, const float*, BayesCell* cells)
+                  SG_INLINE_LAMBDA {
+                    const Doubles p = bayesEvidenceLanes(widen(empty), widen(occupied));
+                    store(cells, bayesLanes(load(cells), p));
+                  });
+  }
+}
+
+SG_RUN_CLONES void logProduct(const EvidenceRuns& runs, LogCell* plane) {
+  eachGroup(
+      runs, plane,
+      [](const float* empty, const float* occupied, const float*, LogCell* cells)
+          SG_INLINE_LAMBDA { store(cells, logLanes(load(cells), widen(empty), widen(occupied))); });
+}
+
+SG_RUN_CLONES void logOdds(const EvidenceRuns& runs, LogOddsCell* plane, double invPrior,
+                           double minOdds, double maxOdds) {
+  eachGroup(runs, plane,
+            [=](const float*, const float*, const float* probability, LogOddsCell* cells)
+                SG_INLINE_LAMBDA {
+                  store(cells,
+                        logOddsLanes(load(cells), widen(probability), invPrior, minOdds, maxOdds));
+                });
 }
 
 SG_RUN_CLONES void occupiedSpans(const EvidenceRuns& runs, EvidenceRuns& deferred) {
@@ -320,68 +602,8 @@ SG_RUN_CLONES void occupiedSpans(const EvidenceRuns& runs, EvidenceRuns& deferre
       if (lo < 0) lo = k + __builtin_ctz(bits);
       hi = k + 32 - __builtin_clz(bits);
     }
-    if (lo < 0) continue;
-    const auto count = static_cast<std::size_t>(hi - lo);
-    // kRunPadding values of room past the span, zeros, which the lanes read from a short run's
-    // start and throw away (eachGroup).
-    const std::size_t room = used + count + kRunPadding;
-    if (deferred.occupied.size() < room) deferred.occupied.resize(room);
-    std::copy_n(occupied + lo, count, deferred.occupied.data() + used);
-    std::fill_n(deferred.occupied.data() + used + count, kRunPadding, 0.0f);
-    deferred.runs.push_back(
-        {run.cell + static_cast<std::uint32_t>(lo), hi - lo, static_cast<std::uint32_t>(used)});
-    used += count;
+    if (lo >= 0) deferSpan(run, occupied, lo, hi, deferred, used);
   }
-}
-
-SG_RUN_CLONES void bayes(const EvidenceRuns& runs, BayesCell* plane, bool likelihood) {
-  auto update = [](Doubles p, BayesCell* cells) SG_INLINE_LAMBDA {
-    const Doubles m = load(cells);
-    const Doubles num = p * m;
-    const Doubles den = num + (1.0 - p) * (1.0 - m);
-    store(cells, den > 0.0 ? num / den : m);
-  };
-  if (likelihood) {
-    eachGroup(runs, plane,
-              [&](const float*, const float*, const float* probability, BayesCell* cells)
-                  SG_INLINE_LAMBDA { update(widen(probability), cells); });
-  } else {
-    eachGroup(
-        runs, plane,
-        [&](const float* empty, const float* occupied, const float*, BayesCell* cells)
-            SG_INLINE_LAMBDA { update(0.5 + 0.5 * (widen(occupied) - widen(empty)), cells); });
-  }
-}
-
-SG_RUN_CLONES void bayesUniform(double p, std::span<const std::uint32_t> cells, BayesCell* plane) {
-  eachListed(cells, plane, [p](Doubles m) SG_INLINE_LAMBDA {
-    const Doubles num = p * m;
-    const Doubles den = num + (1.0 - p) * (1.0 - m);
-    return den > 0.0 ? num / den : m;
-  });
-}
-
-SG_RUN_CLONES void logProduct(const EvidenceRuns& runs, LogCell* plane) {
-  eachGroup(runs, plane,
-            [](const float* empty, const float* occupied, const float*, LogCell* cells)
-                SG_INLINE_LAMBDA {
-                  const Doubles m = load(cells) * ((1.0 - widen(empty)) * (1.0 + widen(occupied)));
-                  const auto tiny = (m < cellrule::kLogLow) & (m > 0.0);
-                  store(cells, m > cellrule::kLogHigh ? splat(cellrule::kLogHigh)
-                                                      : (tiny ? splat(cellrule::kLogLow) : m));
-                });
-}
-
-SG_RUN_CLONES void logOdds(const EvidenceRuns& runs, LogOddsCell* plane, double invPrior,
-                           double minOdds, double maxOdds) {
-  eachGroup(runs, plane,
-            [=](const float*, const float*, const float* probability, LogOddsCell* cells)
-                SG_INLINE_LAMBDA {
-                  const Doubles p = clamp(widen(probability), cellrule::kProbabilityFloor,
-                                          1.0 - cellrule::kProbabilityFloor);
-                  const Doubles o = load(cells);
-                  store(cells, clamp(o * (p / (1.0 - p)) * invPrior, minOdds, maxOdds));
-                });
 }
 
 // Eight cells at a time: Dempster–Shafer computes in float, so a group of eight is one AVX2
@@ -410,6 +632,76 @@ SG_RUN_CLONES void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* 
                    }
                  }
                });
+}
+
+}  // namespace plain
+
+// The kernels: masked where the CPU has AVX-512, else the four lanes.
+#ifdef SG_MASKED_RUNS
+#define SG_RUN_MASKED(call) \
+  if (masked()) return call
+#else
+#define SG_RUN_MASKED(call)
+#endif
+
+void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp) {
+  SG_RUN_MASKED(additionEmptyMasked(runs, emp));
+  plain::additionEmpty(runs, emp);
+}
+
+void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ, double scale) {
+  SG_RUN_MASKED(additionOccupiedMasked(runs, occ, scale));
+  plain::additionOccupied(runs, occ, scale);
+}
+
+void bayes(const EvidenceRuns& runs, BayesCell* plane, bool likelihood) {
+  SG_RUN_MASKED(bayesMasked(runs, plane, likelihood));
+  plain::bayes(runs, plane, likelihood);
+}
+
+void logProduct(const EvidenceRuns& runs, LogCell* plane) {
+  SG_RUN_MASKED(logProductMasked(runs, plane));
+  plain::logProduct(runs, plane);
+}
+
+void logOdds(const EvidenceRuns& runs, LogOddsCell* plane, double invPrior, double minOdds,
+             double maxOdds) {
+  SG_RUN_MASKED(logOddsMasked(runs, plane, invPrior, minOdds, maxOdds));
+  plain::logOdds(runs, plane, invPrior, minOdds, maxOdds);
+}
+
+void occupiedSpans(const EvidenceRuns& runs, EvidenceRuns& deferred) {
+  SG_RUN_MASKED(occupiedSpansMasked(runs, deferred));
+  plain::occupiedSpans(runs, deferred);
+}
+
+void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* plane) {
+  SG_RUN_MASKED(dempsterShaferMasked(runs, plane));
+  plain::dempsterShafer(runs, plane);
+}
+
+}  // namespace sg::runs
+
+namespace sg {
+
+std::int64_t occupiedFixedPoint(const EvidenceRuns& runs) {
+#ifdef SG_MASKED_RUNS
+  if (runs::masked()) return runs::occupiedTotalMasked(runs);
+#endif
+  FootprintTotals sum;
+  for (const EvidenceRuns::Run& run : runs.runs) {
+    const float* const occupied = runs.occupied.data() + run.first;
+    for (int k = 0; k < run.count; ++k) sum.add(occupiedFixedPoint(occupied[k]));
+  }
+  return sum.occupied;
+}
+
+}  // namespace sg
+
+namespace sg::runs {
+
+SG_RUN_CLONES void bayesUniform(double p, std::span<const std::uint32_t> cells, BayesCell* plane) {
+  eachListed(cells, plane, [p](Doubles m) SG_INLINE_LAMBDA { return bayesLanes(m, splat(p)); });
 }
 
 SG_RUN_CLONES void logOddsUniform(float probability, std::span<const std::uint32_t> cells,

@@ -62,15 +62,9 @@ inline std::int64_t occupiedFixedPoint(const Footprint& footprint) {
   return sum.occupied;
 }
 // The same of the cells of some runs (a reading's deferred runs, UpdateRule::applyRuns), whose
-// occupied values alone are read.
-inline std::int64_t occupiedFixedPoint(const EvidenceRuns& runs) {
-  FootprintTotals sum;
-  for (const EvidenceRuns::Run& run : runs.runs) {
-    const float* const occupied = runs.occupied.data() + run.first;
-    for (int k = 0; k < run.count; ++k) sum.add(occupiedFixedPoint(occupied[k]));
-  }
-  return sum.occupied;
-}
+// occupied values alone are read: eight at a time where the run kernels take masked lanes
+// (run_kernels.cpp), the same sum.
+std::int64_t occupiedFixedPoint(const EvidenceRuns& runs);
 
 class UpdateRule {
  public:
