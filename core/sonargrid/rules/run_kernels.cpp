@@ -155,6 +155,19 @@ template <std::size_t Bytes>
   }
 }
 
+// The value arrays a kernel reads: those of `runs`, or, with `occupiedOnly`, its occupied array for
+// all three (a deferred run's, UpdateRule::applyRuns).
+struct RunValues {
+  const float* empty;
+  const float* occupied;
+  const float* probability;
+};
+[[gnu::always_inline]] inline RunValues runValues(const EvidenceRuns& runs, bool occupiedOnly) {
+  const float* const occupied = runs.occupied.data();
+  return {occupiedOnly ? occupied : runs.empty.data(), occupied,
+          occupiedOnly ? occupied : runs.probability.data()};
+}
+
 // group(empty, occupied, probability, cells) for every G consecutive cells of every run: G values
 // from each array, G cells to update in place (G is W unless a kernel asks for more:
 // Dempster–Shafer's eight float lanes). No lane touches a cell past its run (another row's,
@@ -162,16 +175,12 @@ template <std::size_t Bytes>
 // a copy of their values from before the run's other groups (so that the cells both cover get the
 // same value from either) and copied back at the end; a run shorter than G is
 // updated on a copy padded with its first cell. The values past a run that the padding lanes read
-// (up to kRunPadding, footprint.h) are ignored. The values are those of `runs`' arrays, or, with
-// `occupiedOnly`, of its occupied array alone (all three pointers point into it; a deferred
-// run's, UpdateRule::applyRuns).
+// (up to kRunPadding, footprint.h) are ignored. The values are runValues(runs, occupiedOnly).
 template <int G = W, class Cell, class Group>
 [[gnu::always_inline]] inline void eachGroup(const EvidenceRuns& runs, Cell* plane, Group&& group,
                                              bool occupiedOnly = false) {
   static_assert(G - 1 <= static_cast<int>(kRunPadding), "a short run's lanes read past it");
-  const float* const occupied = runs.occupied.data();
-  const float* const empty = occupiedOnly ? occupied : runs.empty.data();
-  const float* const probability = occupiedOnly ? occupied : runs.probability.data();
+  const auto [empty, occupied, probability] = runValues(runs, occupiedOnly);
   for (const EvidenceRuns::Run& run : runs.runs) {
     Cell* const cells = plane + run.cell;
     const std::size_t v = run.first;
@@ -382,9 +391,7 @@ SG_MASKED_INLINE inline void narrow8(__mmask8 mask, void* p, Doubles8 v) {
 template <class Cell, class Group>
 SG_MASKED_INLINE inline void eachMasked(const EvidenceRuns& runs, Cell* plane, Group&& group,
                                         bool occupiedOnly = false) {
-  const float* const occupied = runs.occupied.data();
-  const float* const empty = occupiedOnly ? occupied : runs.empty.data();
-  const float* const probability = occupiedOnly ? occupied : runs.probability.data();
+  const auto [empty, occupied, probability] = runValues(runs, occupiedOnly);
   for (const EvidenceRuns::Run& run : runs.runs) {
     Cell* const cells = plane + run.cell;
     const std::size_t v = run.first;
