@@ -385,6 +385,12 @@ SG_MASKED_INLINE inline void narrow8(__mmask8 mask, void* p, Doubles8 v) {
   _mm256_mask_storeu_ps(p, mask, reinterpret_cast<__m256>(__builtin_convertvector(v, Floats8)));
 }
 
+// The mask of the first min(left, 8) lanes: a group of eight with `left` values from its start to
+// the end of its run.
+inline __mmask8 laneMask(int left) {
+  return static_cast<__mmask8>((1u << std::min(left, 8)) - 1u);
+}
+
 // group(mask, empty, occupied, probability, cells) for every eight consecutive cells of every run,
 // the last group of a run masked to its cells: eachGroup() without the copies. `occupiedOnly` as
 // in eachGroup().
@@ -397,7 +403,7 @@ SG_MASKED_INLINE inline void eachMasked(const EvidenceRuns& runs, Cell* plane, G
     const std::size_t v = run.first;
     const int n = run.count;  // a local: the cells' stores could otherwise alias it
     for (int k = 0; k < n; k += 8) {
-      const auto mask = static_cast<__mmask8>((1u << std::min(n - k, 8)) - 1u);
+      const __mmask8 mask = laneMask(n - k);
       group(mask, empty + v + k, occupied + v + k, probability + v + k, cells + k);
     }
   }
@@ -476,7 +482,7 @@ __attribute__((SG_MASKED_TARGET)) void occupiedSpansMasked(const EvidenceRuns& r
     // A bit for each value not ±0 (unordered or not equal: NaN counts, as in the plain kernel).
     int lo = -1, hi = 0;
     for (int k = 0; k < n; k += 8) {
-      const auto mask = static_cast<__mmask8>((1u << std::min(n - k, 8)) - 1u);
+      const __mmask8 mask = laneMask(n - k);
       const unsigned bits = _mm256_mask_cmp_ps_mask(mask, _mm256_maskz_loadu_ps(mask, occupied + k),
                                                     _mm256_setzero_ps(), _CMP_NEQ_UQ);
       if (bits == 0) continue;
@@ -490,16 +496,15 @@ __attribute__((SG_MASKED_TARGET)) void occupiedSpansMasked(const EvidenceRuns& r
 __attribute__((SG_MASKED_TARGET)) std::int64_t occupiedTotalMasked(const EvidenceRuns& runs) {
   // Each value's share as occupiedFixedPoint(float) computes it (NaN 0, clamped to ±2^22, times
   // 2^40, truncated), summed in 64-bit lanes modulo 2^64: the same sum in any order.
-  const Doubles8 zero{}, lo = splatAs<Doubles8>(-0x1p22), hi = splatAs<Doubles8>(0x1p22);
+  const Doubles8 zero{};
   __m512i sum = _mm512_setzero_si512();
   for (const EvidenceRuns::Run& run : runs.runs) {
     const float* const occupied = runs.occupied.data() + run.first;
     const int n = run.count;
     for (int k = 0; k < n; k += 8) {
-      const auto mask = static_cast<__mmask8>((1u << std::min(n - k, 8)) - 1u);
+      const __mmask8 mask = laneMask(n - k);
       Doubles8 x = widen8(mask, occupied + k);
-      x = x == x ? x : zero;
-      x = x < lo ? lo : (hi < x ? hi : x);
+      x = clampAs(x == x ? x : zero, -0x1p22, 0x1p22);
       sum = _mm512_add_epi64(sum, _mm512_cvttpd_epi64(reinterpret_cast<__m512d>(x * 0x1p40)));
     }
   }
@@ -689,26 +694,6 @@ void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* plane) {
   plain::dempsterShafer(runs, plane);
 }
 
-}  // namespace sg::runs
-
-namespace sg {
-
-std::int64_t occupiedFixedPoint(const EvidenceRuns& runs) {
-#ifdef SG_MASKED_RUNS
-  if (runs::masked()) return runs::occupiedTotalMasked(runs);
-#endif
-  FootprintTotals sum;
-  for (const EvidenceRuns::Run& run : runs.runs) {
-    const float* const occupied = runs.occupied.data() + run.first;
-    for (int k = 0; k < run.count; ++k) sum.add(occupiedFixedPoint(occupied[k]));
-  }
-  return sum.occupied;
-}
-
-}  // namespace sg
-
-namespace sg::runs {
-
 SG_RUN_CLONES void bayesUniform(double p, std::span<const std::uint32_t> cells, BayesCell* plane) {
   eachListed(cells, plane, [p](Doubles m) SG_INLINE_LAMBDA { return bayesLanes(m, splat(p)); });
 }
@@ -751,3 +736,19 @@ SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
 }
 
 }  // namespace sg::runs
+
+namespace sg {
+
+std::int64_t occupiedFixedPoint(const EvidenceRuns& runs) {
+#ifdef SG_MASKED_RUNS
+  if (runs::masked()) return runs::occupiedTotalMasked(runs);
+#endif
+  FootprintTotals sum;
+  for (const EvidenceRuns::Run& run : runs.runs) {
+    const float* const occupied = runs.occupied.data() + run.first;
+    for (int k = 0; k < run.count; ++k) sum.add(occupiedFixedPoint(occupied[k]));
+  }
+  return sum.occupied;
+}
+
+}  // namespace sg
