@@ -447,10 +447,14 @@ void TstFusedRuns::uniformGivesApplysBits() {
 }
 
 void TstFusedRuns::runsGiveApplysBits_data() {
+  // The values taken in turn cell by cell, or one value for all the cells of a run, as a cone's
+  // runs mostly have (Dempster–Shafer's masked groups of one kind of evidence).
   QTest::addColumn<QString>("rule");
+  QTest::addColumn<bool>("valuePerRun");
   for (const char* r :
        {"addition", "bayes", "bayes-recursive", "log", "logodds", "dempster-shafer"}) {
-    QTest::addRow("%s", r) << QString(r);
+    QTest::addRow("%s", r) << QString(r) << false;
+    QTest::addRow("%s, a value per run", r) << QString(r) << true;
   }
 }
 
@@ -461,6 +465,7 @@ void TstFusedRuns::runsGiveApplysBits() {
   // general case, which no model gives), none, certain, out of [0, 1] and NaN; against apply() of
   // the same cells in the same order.
   QFETCH(QString, rule);
+  QFETCH(bool, valuePerRun);
   const std::unique_ptr<UpdateRule> r = configuredRule(rule);
   QVERIFY(!r->needsTotals());
   constexpr std::uint32_t kCells = 136;
@@ -483,9 +488,11 @@ void TstFusedRuns::runsGiveApplysBits() {
       std::uint32_t cell = 1 + shift;
       std::size_t v = 0;
       for (const int count : {1, 2, 3, 4, 5, 6, 7, 8, 9, 15, 16, 17, 19}) {
+        const std::size_t run = runs.runs.size();
         runs.runs.push_back(EvidenceRuns::Run{cell, count, static_cast<std::uint32_t>(v)});
         for (int k = 0; k < count; ++k, ++v) {
-          CellEvidence c = kinds[(v * 7) % kKinds];  // 7 is prime to the 11 kinds
+          // 7 is prime to the 11 kinds; the 13 runs take each of them.
+          CellEvidence c = kinds[((valuePerRun ? run : v) * 7) % kKinds];
           c.cell = cell + static_cast<std::uint32_t>(k);
           appendCell(c, runs, footprint);
         }

@@ -292,46 +292,66 @@ template <class V>
   return v < 0.0f ? V{} : (1.0f < v ? V{} + 1.0f : v);  // std::clamp(v, 0, 1)
 }
 
-// Dempster's rule on four or eight cells (a, b per lane) for the model's evidence per lane, as
-// cellrule::dempsterShafer's first two cases: one kind of evidence x, `grow` the mass x adds to,
-// `shrink` the other. Lanes of total conflict keep their cells; lanes with both kinds (which no
-// model gives) are left as they were and set in the bits returned, for cellrule to do one at a
-// time.
-template <class V>
-[[gnu::always_inline]] inline int dempsterShaferLanes(V occupied, V empty, V& a, V& b) {
+// Dempster's rule on four or eight cells (a, b per lane), as cellrule::dempsterShafer's first two
+// cases, for evidence of one kind per lane: x, the mass it adds to m(occ) or m(emp) as
+// pick(forOccupied, forEmpty) chooses per lane (a select on the lanes' kinds, or one of the two
+// where every lane has the same kind). `grow` is the mass x adds to, `shrink` the other. Lanes of
+// total conflict, and lanes set in `leave`, keep their cells; `leaving` says whether any is set.
+template <class V, class Pick>
+[[gnu::always_inline]] inline void oneKindLanes(V x, Pick pick, IntsOf<V> leave, bool leaving,
+                                                V& a, V& b) {
   using I = IntsOf<V>;
   constexpr int kAll = (1 << sizeof(V) / sizeof(float)) - 1;
-  const V o = clampUnit(occupied), e = clampUnit(empty);
-  const I onlyOccupied = e == 0.0f;
-  const I onlyEmpty = o == 0.0f;
-  const I general = ~(onlyOccupied | onlyEmpty);
-  const V x = onlyOccupied ? o : e;
   // Lanes where the mass x adds to is the one the cell leaves out (its sign bit): the other two are
   // a and b, and both scale by s. All lanes so, the usual case: nothing else to do.
-  const V grownCell = onlyOccupied ? a : b;
-  if (signBits(grownCell) == kAll && signBits(reinterpret_cast<V>(general)) == 0) {
-    const V denominator = 1.0f - (onlyOccupied ? b : a) * x;
+  const V grownCell = pick(a, b);
+  if (signBits(grownCell) == kAll && !leaving) {
+    const V denominator = 1.0f - pick(b, a) * x;
     const V s = (1.0f - x) * (1.0f / denominator);
     const I keep = denominator <= 0.0f;  // total conflict
     a = keep ? a : a * s;
     b = keep ? b : b * s;
-    return 0;
+    return;
   }
   const Masses<V> m = masses(a, b);
-  const V grow = onlyOccupied ? m.occ : m.emp;
-  const V shrink = onlyOccupied ? m.emp : m.occ;
+  const V grow = pick(m.occ, m.emp);
+  const V shrink = pick(m.emp, m.occ);
   const V denominator = 1.0f - shrink * x;
   const V inv = 1.0f / denominator;
   const V s = (1.0f - x) * inv;
   const V grown = (grow + m.unk * x) * inv;
   const V shrunk = shrink * s;
   V newA, newB;
-  cellsOf<V>({onlyOccupied ? grown : shrunk, onlyOccupied ? shrunk : grown, m.unk * s}, newA, newB);
+  cellsOf<V>({pick(grown, shrunk), pick(shrunk, grown), m.unk * s}, newA, newB);
   const I scaled = reinterpret_cast<I>(grownCell) < 0;
-  const I keep = (denominator <= 0.0f) | general;
+  const I keep = (denominator <= 0.0f) | leave;
   a = keep ? a : (scaled ? a * s : newA);
   b = keep ? b : (scaled ? b * s : newB);
-  return signBits(reinterpret_cast<V>(general));
+}
+
+// oneKindLanes() for the model's evidence per lane: lanes with both kinds (which no model gives)
+// are left as they were and set in the bits returned, for cellrule to do one at a time.
+template <class V>
+[[gnu::always_inline]] inline int dempsterShaferLanes(V occupied, V empty, V& a, V& b) {
+  using I = IntsOf<V>;
+  const V o = clampUnit(occupied), e = clampUnit(empty);
+  const I onlyOccupied = e == 0.0f;
+  const I onlyEmpty = o == 0.0f;
+  const I general = ~(onlyOccupied | onlyEmpty);
+  const int generalBits = signBits(reinterpret_cast<V>(general));
+  auto pick = [onlyOccupied](V forOccupied, V forEmpty)
+                  SG_INLINE_LAMBDA { return onlyOccupied ? forOccupied : forEmpty; };
+  oneKindLanes(pick(o, e), pick, general, generalBits != 0, a, b);
+  return generalBits;
+}
+
+// oneKindLanes() where every lane's evidence x is of the kind kOccupied says (the listed cells of
+// HIMM's axis, a masked group of a run: fewer selects).
+template <bool kOccupied, class V>
+[[gnu::always_inline]] inline void dempsterShaferOneKind(V x, V& a, V& b) {
+  auto pick = [](V forOccupied, V forEmpty)
+                  SG_INLINE_LAMBDA { return kOccupied ? forOccupied : forEmpty; };
+  oneKindLanes(x, pick, IntsOf<V>{}, false, a, b);
 }
 
 // Dempster–Shafer's general case, for a cell with both kinds of evidence (no cone model gives one):
@@ -529,7 +549,22 @@ __attribute__((SG_MASKED_TARGET)) void dempsterShaferMasked(const EvidenceRuns& 
                    _mm512_set1_epi64(static_cast<long long>(0x8000000080000000ull)), m, cells));
                Floats8 a = __builtin_shufflevector(ab, ab, 0, 2, 4, 6, 8, 10, 12, 14);
                Floats8 b = __builtin_shufflevector(ab, ab, 1, 3, 5, 7, 9, 11, 13, 15);
-               const int general = dempsterShaferLanes(o, e, a, b);
+               // A group whose cells all have one kind of evidence, as runs mostly are (a lane
+               // left out counts as either): that kind's lanes (dempsterShaferOneKind), which
+               // give the bits of dempsterShaferLanes' for it with fewer selects.
+               const Floats8 co = clampUnit(o), ce = clampUnit(e);
+               const auto outside = static_cast<__mmask8>(~m);
+               const __mmask8 occupiedKind = _mm256_cmp_ps_mask(ce, Floats8{}, _CMP_EQ_OQ);
+               const __mmask8 emptyKind =
+                   _mm256_cmp_ps_mask(co, Floats8{}, _CMP_EQ_OQ) & ~occupiedKind;
+               int general = 0;
+               if ((emptyKind | outside) == 0xff) {
+                 dempsterShaferOneKind<false>(ce, a, b);
+               } else if ((occupiedKind | outside) == 0xff) {
+                 dempsterShaferOneKind<true>(co, a, b);
+               } else {
+                 general = dempsterShaferLanes(o, e, a, b);
+               }
                const Floats16 out = __builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11, 4, 12,
                                                             5, 13, 6, 14, 7, 15);
                _mm512_mask_storeu_epi64(cells, m, reinterpret_cast<__m512i>(out));
@@ -709,23 +744,18 @@ SG_RUN_CLONES void logOddsUniform(float probability, std::span<const std::uint32
   });
 }
 
-SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
-                                         std::span<const std::uint32_t> cells,
-                                         DempsterShaferCell* plane) {
-  const float o = std::clamp(occupied, 0.0f, 1.0f);
-  const float e = std::clamp(empty, 0.0f, 1.0f);
-  if (e != 0.0f && o != 0.0f) {  // both kinds: cellrule's general case, one cell at a time
-    for (const std::uint32_t c : cells) generalDempsterShafer(occupied, empty, plane[c]);
-    return;
-  }
-  // One kind of evidence: eight cells at a time (eachListedGroup<2 * W>), gathered as eight 8-byte
-  // pairs into lo = a0 b0 … a3 b3 and hi = a4 b4 … a7 b7, and scattered back.
+// One kind of evidence, eight cells at a time (eachListedGroup<2 * W>), gathered as eight 8-byte
+// pairs into lo = a0 b0 … a3 b3 and hi = a4 b4 … a7 b7, and scattered back.
+template <bool kOccupied>
+[[gnu::always_inline]] inline void dempsterShaferListed(float x,
+                                                        std::span<const std::uint32_t> cells,
+                                                        DempsterShaferCell* plane) {
   eachListedGroup<2 * W>(cells, [=](const std::uint32_t* c) SG_INLINE_LAMBDA {
     const Doubles lo = gather(plane, c), hi = gather(plane, c + W);
     const Floats8 lo8 = reinterpret_cast<Floats8>(lo), hi8 = reinterpret_cast<Floats8>(hi);
     Floats8 a = __builtin_shufflevector(lo8, hi8, 0, 2, 4, 6, 8, 10, 12, 14);
     Floats8 b = __builtin_shufflevector(lo8, hi8, 1, 3, 5, 7, 9, 11, 13, 15);
-    dempsterShaferLanes(Floats8{} + occupied, Floats8{} + empty, a, b);
+    dempsterShaferOneKind<kOccupied>(Floats8{} + x, a, b);
     const Doubles newLo =
         reinterpret_cast<Doubles>(__builtin_shufflevector(a, b, 0, 8, 1, 9, 2, 10, 3, 11));
     const Doubles newHi =
@@ -733,6 +763,25 @@ SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
     scatter(plane, c, newLo);
     scatter(plane, c + W, newHi);
   });
+}
+
+SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
+                                         std::span<const std::uint32_t> cells,
+                                         DempsterShaferCell* plane) {
+  const float o = std::clamp(occupied, 0.0f, 1.0f);
+  const float e = std::clamp(empty, 0.0f, 1.0f);
+  // Both kinds (cellrule's general case), or one cell (HIMM's echo: eight lanes cost it more than
+  // cellrule's branches): one cell at a time.
+  if ((e != 0.0f && o != 0.0f) || cells.size() == 1) {
+    for (const std::uint32_t c : cells) generalDempsterShafer(occupied, empty, plane[c]);
+    return;
+  }
+  // The kind as cellrule::dempsterShafer takes it: occupied where e is 0, o then possibly 0 too.
+  if (e == 0.0f) {
+    dempsterShaferListed<true>(o, cells, plane);
+  } else {
+    dempsterShaferListed<false>(e, cells, plane);
+  }
 }
 
 }  // namespace sg::runs
