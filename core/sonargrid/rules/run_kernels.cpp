@@ -285,7 +285,10 @@ template <class V>
   return __builtin_ia32_movmskps(v);
 }
 [[gnu::always_inline]] inline int signBits(Floats8 v) {
-  return signBits(Floats{v[0], v[1], v[2], v[3]}) | signBits(Floats{v[4], v[5], v[6], v[7]}) << 4;
+  // The halves as shuffles: built from elements, GCC moved the lanes one at a time (three valignd,
+  // three unpacks and a shuffle for the upper half, in the masked Dempster–Shafer kernel).
+  return signBits(Floats(__builtin_shufflevector(v, v, 0, 1, 2, 3))) |
+         signBits(Floats(__builtin_shufflevector(v, v, 4, 5, 6, 7))) << 4;
 }
 template <class V>
 [[gnu::always_inline]] inline V clampUnit(V v) {
@@ -298,8 +301,8 @@ template <class V>
 // where every lane has the same kind). `grow` is the mass x adds to, `shrink` the other. Lanes of
 // total conflict, and lanes set in `leave`, keep their cells; `leaving` says whether any is set.
 template <class V, class Pick>
-[[gnu::always_inline]] inline void oneKindLanes(V x, Pick pick, IntsOf<V> leave, bool leaving,
-                                                V& a, V& b) {
+[[gnu::always_inline]] inline void oneKindLanes(V x, Pick pick, IntsOf<V> leave, bool leaving, V& a,
+                                                V& b) {
   using I = IntsOf<V>;
   constexpr int kAll = (1 << sizeof(V) / sizeof(float)) - 1;
   // Lanes where the mass x adds to is the one the cell leaves out (its sign bit): the other two are
