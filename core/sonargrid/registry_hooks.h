@@ -32,4 +32,10 @@ void wrapUpdateRules(UpdateRuleWrapper wrap);
 // mapping. Returns the previous setting.
 ConeLanes limitConeLanes(ConeLanes widest);
 
+// Whether Konolige's float lanes may take λ = 1 − g where a group of lanes lies well short of the
+// echo (konolige.cpp, KonoligeShape::allAtFlatEnd), rather than the whole formula, which gives the
+// same bits there: a test compares the two. By default they may. Set it only while no mapper is
+// mapping. Returns the previous setting.
+bool konoligeFlatEnd(bool allowed);
+
 }  // namespace sg::testing

@@ -7,7 +7,9 @@
 #include <cstring>
 
 #include "sonargrid/models/cone_raster.h"
+#include "sonargrid/models/lanes.h"
 #include "sonargrid/models/sensor_model.h"
+#include "sonargrid/registry_hooks.h"
 #include "sonargrid/rules/update_rule.h"
 
 using namespace sg;
@@ -38,6 +40,7 @@ class TstModels : public QObject {
   void parameterized();
   void konolige_data();
   void konolige();
+  void konoligeFlatEndIsExact();
   void himmAxis();
   void evidenceAndProbabilityAgree();
   void footprintMatchesEvaluate();
@@ -195,6 +198,84 @@ void TstModels::konolige_data() {
 
 void TstModels::konolige() {
   check(*model("konolige", {{"no_echo", 1.0}}));
+}
+
+void TstModels::konoligeFlatEndIsExact() {
+  // Where a group of lanes lies well short of the echo (z = (D − r)/d >= 8), Konolige's float
+  // lanes take λ = 1 − g instead of the whole formula, which gives the same bits there
+  // (konolige.cpp, KonoligeShape::allAtFlatEnd). Compared with the whole formula everywhere
+  // (testing::konoligeFlatEnd(false)): footprints (four lanes) and evidence runs (four lanes, or
+  // eight with AVX2 or AVX-512 where the CPU has them), bit for bit, at the paper's values and at
+  // the sliders' limits that make g φ/(d F) largest (d0 = F = 0.001, a0 = 1) or d widest.
+  GridSpec grid;
+  grid.cellSize = 0.05;
+  grid.width = 240;
+  grid.height = 200;
+  struct Restore {
+    ConeLanes lanes = testing::limitConeLanes(ConeLanes::Avx512);
+    ~Restore() {
+      testing::limitConeLanes(lanes);
+      testing::konoligeFlatEnd(true);
+    }
+  } restore;
+  const std::vector<std::vector<std::pair<const char*, double>>> settings = {
+      {},
+      {{"range_sd0", 0.001},
+       {"range_sd1", 0.0},
+       {"false_rate", 0.001},
+       {"attenuation", 1.0},
+       {"attenuation_slope", 0.0}},
+      {{"range_sd0", 0.5}, {"range_sd1", 0.19}, {"omega", 90.0}},
+      {{"attenuation", 1.0}, {"attenuation_slope", 0.2}, {"omega", 5.0}}};
+  std::size_t compared = 0;
+  for (const auto& set : settings) {
+    auto m = makeSensorModel("konolige");
+    ParameterSet p(m->info().parameters);
+    for (const auto& [k, v] : set) p.set(k, v);
+    m->configure(p);
+    const double maxRange = 5.0;
+    const auto tables = BeamTables::shared(grid.cellSize, m->reach(maxRange));
+    for (const ConeLanes lanes : {ConeLanes::Four, ConeLanes::Avx2, ConeLanes::Avx512}) {
+      testing::limitConeLanes(lanes);
+      for (const double heading : {0.0, 0.7, 1.5707963, 2.9, -2.2, -0.4}) {
+        for (const double range : {0.7, 2.03, 3.41, 4.9}) {
+          Beam beam;
+          beam.sensor = Pose2D(6.013 + 0.3 * heading, 5.031 - 0.1 * heading, heading);
+          beam.range = range;
+          beam.maxRange = maxRange;
+          Footprint fp[2];
+          EvidenceRuns runs[2];
+          for (const bool flatEnd : {true, false}) {
+            testing::konoligeFlatEnd(flatEnd);
+            m->footprint(beam, grid, *tables, fp[flatEnd]);
+            QVERIFY(m->evidenceRuns(beam, grid, *tables, RowWindow{}, runs[flatEnd]));
+          }
+          const QByteArray where = "setting " + QByteArray::number(&set - settings.data()) +
+                                   " lanes " + QByteArray::number(static_cast<int>(lanes)) +
+                                   " heading " + QByteArray::number(heading) + " range " +
+                                   QByteArray::number(range);
+          QVERIFY2(!fp[0].cells.empty() && fp[0].cells.size() == fp[1].cells.size(), where);
+          QVERIFY2(std::memcmp(fp[0].cells.data(), fp[1].cells.data(),
+                               fp[0].cells.size() * sizeof(CellEvidence)) == 0,
+                   where);
+          QVERIFY2(runs[0].runs.size() == runs[1].runs.size(), where);
+          for (std::size_t i = 0; i < runs[0].runs.size(); ++i) {
+            const EvidenceRuns::Run a = runs[0].runs[i], b = runs[1].runs[i];
+            QVERIFY2(a.cell == b.cell && a.count == b.count && a.first == b.first, where);
+            const auto bytes = static_cast<std::size_t>(a.count) * sizeof(float);
+            QVERIFY2(std::memcmp(&runs[0].empty[a.first], &runs[1].empty[a.first], bytes) == 0 &&
+                         std::memcmp(&runs[0].occupied[a.first], &runs[1].occupied[a.first],
+                                     bytes) == 0 &&
+                         std::memcmp(&runs[0].probability[a.first], &runs[1].probability[a.first],
+                                     bytes) == 0,
+                     where + " run " + QByteArray::number(static_cast<qulonglong>(i)));
+          }
+          compared += fp[0].cells.size();
+        }
+      }
+    }
+  }
+  QVERIFY(compared > 10000);
 }
 
 void TstModels::himmAxis() {

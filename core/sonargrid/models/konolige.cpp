@@ -14,12 +14,15 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 #include "sonargrid/models/cone_model.h"
 #include "sonargrid/models/model_classes.h"
 #include "sonargrid/models/sampled_function.h"
+#include "sonargrid/registry_hooks.h"
 
 namespace sg {
 namespace {
@@ -57,7 +60,18 @@ class NormalTable {
       lanes_[i] = {static_cast<float>(pdf_[i]), static_cast<float>(pdf_[i + 1] - pdf_[i]),
                    static_cast<float>(cdf_[i]), static_cast<float>(cdf_[i + 1] - cdf_[i])};
     }
+    // The float lanes' last two rows, which a z within a few ulps of kZMax or above it reads
+    // (KonoligeShape::flatEnd): Φ is 1 there to the last bit, φ at most the row before the last.
+    const auto& edge = lanes_[kIntervals - 1];
+    const auto& end = lanes_[kIntervals];
+    flatCdfIsOne_ = edge[2] == 1.0f && end[2] == 1.0f && edge[3] >= 0.0f && edge[3] < 0x1p-26f &&
+                    end[3] == 0.0f;
+    flatPdf_ = static_cast<double>(edge[0]);
   }
+  // Whether Φ reads exactly 1 in the lanes at z >= kZMax (to within a few ulps), and the largest
+  // φ they read there.
+  bool flatCdfIsOne() const { return flatCdfIsOne_; }
+  double flatPdf() const { return flatPdf_; }
   // Linear interpolation; z is at least kZShadow here, and above kZMax both are flat.
   void operator()(double z, double& pdf, double& cdf) const {
     const double t = (std::min(z, kZMax) + kZMax) * kScale;
@@ -113,7 +127,12 @@ class NormalTable {
   static constexpr double kScale = kIntervals / (2.0 * kZMax);
   std::array<double, kIntervals + 2> pdf_{}, cdf_{};
   std::array<std::array<float, 4>, kIntervals + 1> lanes_{};
+  bool flatCdfIsOne_ = false;
+  double flatPdf_ = 1.0;
 };
+
+// testing::konoligeFlatEnd (registry_hooks.h).
+std::atomic<bool> flatEndAllowed{true};
 
 const NormalTable& normalTable() {
   static const NormalTable t;
@@ -124,6 +143,8 @@ const NormalTable& normalTable() {
 template <class S>
 struct KonoligeShape {
   bool echo = true;
+  // The float lanes may take λ = 1 − g where every lane is at z >= kZMax (flatEnd, below).
+  bool flatEnd = false;
   S range, invF;
   S attenuation, attenuationSlope, sd0, sd1;
   const SampledFunction* lobe = nullptr;
@@ -133,14 +154,12 @@ struct KonoligeShape {
   [[gnu::always_inline]] ConeValue<T> value(T r, T t) const {
     const T a = attenuation * (S(1) - lanes::min(T{} + S(1), attenuationSlope * r));
     const T g = a * (*lobe)(t);
-    T lambda;
-    if (echo) {
+    T lambda = S(1) - g;  // no echo, or (float lanes) every lane well short of it
+    if (echo && !allAtFlatEnd(r)) {
       const T invD = S(1) / (sd0 + sd1 * r);
       T pdf, cdf;
       (*normal)((range - r) * invD, pdf, cdf);
       lambda = g * pdf * invF * invD + S(1) - g * cdf;
-    } else {
-      lambda = S(1) - g;
     }
     // λ to the Footprint's three values: P = λ/(1 + λ), pO = 2P − 1 = (λ − 1)/(λ + 1), pE = −that.
     const T inv = S(1) / (S(1) + lambda);
@@ -149,6 +168,21 @@ struct KonoligeShape {
     const auto heard = a > S(0);
     return {heard && occupied, heard && !occupied, occupied ? T{} : (S(1) - lambda) * inv,
             occupied ? (lambda - S(1)) * inv : T{}, lambda * inv};
+  }
+
+  // Whether every lane has D − r >= kZMax · d(r), which most groups of a cone short of the echo
+  // have. There, in float lanes, the formula below gives λ = 1 − g bit for bit, without its
+  // division: z = (D − r) · (1/d) is then at least kZMax to within a few ulps, so the look-up reads
+  // the table's last two rows, where Φ is exactly 1 (g Φ = g) and g φ/(d F) is below 2⁻²⁶ (flatEnd
+  // is set only then), which 1 absorbs: (g φ/(d F) + 1) − g Φ = 1 − g. Not in double (evaluate()),
+  // where Φ(8) is 1 − 6·10⁻¹⁶.
+  template <class T>
+  [[gnu::always_inline]] bool allAtFlatEnd(T r) const {
+    if constexpr (std::is_same_v<T, double>) {
+      return false;
+    } else {
+      return flatEnd && lanes::all(range - r >= S(kZMax) * (sd0 + sd1 * r));
+    }
   }
 };
 
@@ -163,7 +197,8 @@ class KonoligeModel final : public ConeModel<KonoligeModel> {
 
  private:
   KonoligeSettings s_;
-  SampledFunction lobe_;  // exp(-θ²/2σ²) over |θ| in [0, ω/2]
+  SampledFunction lobe_;       // exp(-θ²/2σ²) over |θ| in [0, ω/2]
+  bool flatEndExact_ = false;  // whether λ = 1 − g is exact at the flat end (configure())
 };
 
 }  // namespace
@@ -213,6 +248,14 @@ void KonoligeModel::configure(const ParameterSet& p) {
   const double sigma = s_.omega / 2.0;
   lobe_ = SampledFunction(0.0, s_.omega / 2.0, 1024,
                           [sigma](double t) { return std::exp(-t * t / (2.0 * sigma * sigma)); });
+  // KonoligeShape::allAtFlatEnd: g <= a0 (the lobe is at most 1, and k >= 0) and 1/d <= 1/d0 (d1,
+  // r >= 0); the float lanes' products round by far less than the factor of 2 between 2⁻²⁶ and
+  // 2⁻²⁵, below which 1 + x stays 1 (at 2⁻²⁴ it would tie). At the sliders' limits a0 φ/(d0 F) is
+  // 5·10⁻⁹ at most, under 2⁻²⁶ ≈ 1.5·10⁻⁸.
+  const NormalTable& normal = normalTable();
+  flatEndExact_ = normal.flatCdfIsOne() && s_.attenuation >= 0.0 && s_.attenuationSlope >= 0.0 &&
+                  s_.sd0 > 0.0 && s_.sd1 >= 0.0 && s_.falseRate > 0.0 &&
+                  s_.attenuation * normal.flatPdf() / (s_.sd0 * s_.falseRate) < 0x1p-26;
 }
 
 template <class S>
@@ -237,6 +280,7 @@ ConeBeam<KonoligeShape<S>> KonoligeModel::prepare(double range, double maxRange)
   k.sd1 = S(s_.sd1);
   k.lobe = &lobe_;
   k.normal = &normalTable();
+  k.flatEnd = echo && flatEndExact_ && flatEndAllowed.load(std::memory_order_relaxed);
   return b;
 }
 
@@ -244,6 +288,10 @@ double KonoligeModel::reach(double maxRange) const {
   double r = shadowRange(s_, maxRange);
   if (s_.attenuationSlope > 0.0) r = std::min(r, 1.0 / s_.attenuationSlope);
   return r;
+}
+
+bool testing::konoligeFlatEnd(bool allowed) {
+  return flatEndAllowed.exchange(allowed);
 }
 
 std::unique_ptr<SensorModel> makeKonoligeModel() {
