@@ -47,16 +47,17 @@ void AdditionRule::applyPart(const Footprint& fp, const FootprintTotals& totals,
 }
 
 void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const {
-  runs::additionEmpty(runs, grid.cells<EmptyEvidence>(0));
   if (!normalise_) {
+    runs::additionEmpty(runs, grid.cells<EmptyEvidence>(0));
     runs::additionOccupied(runs, grid.cells<OccupiedEvidence>(1), 1.0);
     return;
   }
   // The occupied cells wait for the reading's total (applyDeferred). A cell of no occupied evidence
   // adds nothing to it (0 or −0 in fixed point is 0) and is left as it was by the update, so each
   // run is deferred from its first cell of other occupied evidence to its last: the arc's span of
-  // the run, with the occupied values alone (found eight values at a time, run_kernels.cpp).
-  runs::occupiedSpans(runs, *deferred);
+  // the run, with the occupied values alone (found eight values at a time, in the empty update's
+  // pass over the runs, run_kernels.cpp).
+  runs::additionEmpty(runs, grid.cells<EmptyEvidence>(0), deferred);
 }
 
 void AdditionRule::applyDeferred(const EvidenceRuns& deferred, const FootprintTotals& totals,

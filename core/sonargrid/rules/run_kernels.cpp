@@ -327,13 +327,36 @@ bool masked() {
   return coneLanes() == ConeLanes::Avx512;
 }
 
+// The empty update of every run; with kDefer, in the same pass over the runs, the deferral of each
+// run's occupied span (plain::occupiedSpans), rather than in a second pass.
+template <bool kDefer>
 __attribute__((SG_MASKED_TARGET)) void additionEmptyMasked(const EvidenceRuns& runs,
-                                                           EmptyEvidence* emp) {
-  eachMasked(runs, emp,
-             [](__mmask8 m, const float* empty, const float*, const float*, EmptyEvidence* cells)
-                 SG_MASKED_INLINE {
-                   narrow8(m, cells, additionLanes(widen8(m, cells), widen8(m, empty)));
-                 });
+                                                           EmptyEvidence* emp,
+                                                           EvidenceRuns* deferred) {
+  std::size_t used = kDefer ? deferred->valuesEnd() : 0;
+  const float* const emptyValues = runs.empty.data();
+  const float* const occupiedValues = runs.occupied.data();
+  for (const EvidenceRuns::Run& run : runs.runs) {
+    EmptyEvidence* const cells = emp + run.cell;
+    const float* const empty = emptyValues + run.first;
+    const float* const occupied = occupiedValues + run.first;
+    const int n = run.count;
+    int lo = -1, hi = 0;
+    for (int k = 0; k < n; k += 8) {
+      const __mmask8 mask = laneMask(n - k);
+      narrow8(mask, cells + k, additionLanes(widen8(mask, cells + k), widen8(mask, empty + k)));
+      if constexpr (kDefer) {
+        // A bit for each value not ±0 (unordered or not equal: NaN counts, as in the plain
+        // kernel, plain::occupiedSpans).
+        const unsigned bits = _mm256_mask_cmp_ps_mask(
+            mask, _mm256_maskz_loadu_ps(mask, occupied + k), _mm256_setzero_ps(), _CMP_NEQ_UQ);
+        if (bits == 0) continue;
+        if (lo < 0) lo = k + __builtin_ctz(bits);
+        hi = k + 32 - __builtin_clz(bits);
+      }
+    }
+    if (kDefer && lo >= 0) deferSpan(run, occupied, lo, hi, *deferred, used);
+  }
 }
 
 __attribute__((SG_MASKED_TARGET)) void additionOccupiedMasked(const EvidenceRuns& runs,
@@ -383,26 +406,6 @@ __attribute__((SG_MASKED_TARGET)) void logOddsMasked(const EvidenceRuns& runs, L
         store8(m, cells,
                logOddsLanes(load8(m, cells), widen8(m, probability), invPrior, minOdds, maxOdds));
       });
-}
-
-__attribute__((SG_MASKED_TARGET)) void occupiedSpansMasked(const EvidenceRuns& runs,
-                                                           EvidenceRuns& deferred) {
-  std::size_t used = deferred.valuesEnd();
-  for (const EvidenceRuns::Run& run : runs.runs) {
-    const float* const occupied = runs.occupied.data() + run.first;
-    const int n = run.count;
-    // A bit for each value not ±0 (unordered or not equal: NaN counts, as in the plain kernel).
-    int lo = -1, hi = 0;
-    for (int k = 0; k < n; k += 8) {
-      const __mmask8 mask = laneMask(n - k);
-      const unsigned bits = _mm256_mask_cmp_ps_mask(mask, _mm256_maskz_loadu_ps(mask, occupied + k),
-                                                    _mm256_setzero_ps(), _CMP_NEQ_UQ);
-      if (bits == 0) continue;
-      if (lo < 0) lo = k + __builtin_ctz(bits);
-      hi = k + 32 - __builtin_clz(bits);
-    }
-    if (lo >= 0) deferSpan(run, occupied, lo, hi, deferred, used);
-  }
 }
 
 __attribute__((SG_MASKED_TARGET)) std::int64_t occupiedTotalMasked(const EvidenceRuns& runs) {
@@ -585,8 +588,14 @@ SG_RUN_CLONES void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* 
 #define SG_RUN_MASKED(call)
 #endif
 
-void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp) {
-  SG_RUN_MASKED(additionEmptyMasked(runs, emp));
+void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp, EvidenceRuns* deferred) {
+  if (deferred) {
+    SG_RUN_MASKED(additionEmptyMasked<true>(runs, emp, deferred));
+    plain::additionEmpty(runs, emp);
+    plain::occupiedSpans(runs, *deferred);
+    return;
+  }
+  SG_RUN_MASKED(additionEmptyMasked<false>(runs, emp, nullptr));
   plain::additionEmpty(runs, emp);
 }
 
@@ -609,11 +618,6 @@ void logOdds(const EvidenceRuns& runs, LogOddsCell* plane, double invPrior, doub
              double maxOdds) {
   SG_RUN_MASKED(logOddsMasked(runs, plane, invPrior, minOdds, maxOdds));
   plain::logOdds(runs, plane, invPrior, minOdds, maxOdds);
-}
-
-void occupiedSpans(const EvidenceRuns& runs, EvidenceRuns& deferred) {
-  SG_RUN_MASKED(occupiedSpansMasked(runs, deferred));
-  plain::occupiedSpans(runs, deferred);
 }
 
 void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* plane) {

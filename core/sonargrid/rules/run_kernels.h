@@ -15,16 +15,15 @@
 
 namespace sg::runs {
 
-// AdditionRule::applyPart's empty update of every cell of the runs with c.empty > 0.
-void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp);
+// AdditionRule::applyPart's empty update of every cell of the runs with c.empty > 0; with
+// `deferred`, also AdditionRule::applyRuns' deferral: appends to it, for each run with occupied
+// evidence, its span from the first cell whose occupied value is not ±0 (NaN counts) to the last,
+// with those values alone and kRunPadding zeros past them.
+void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp, EvidenceRuns* deferred = nullptr);
 // Its occupied update with `scale` (1 without normalisation; positive) of every cell with
 // c.occupied > 0, reading the runs' occupied values alone (a reading's deferred runs,
 // AdditionRule::applyRuns).
 void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ, double scale);
-// AdditionRule::applyRuns' deferral: appends to `deferred`, for each run with occupied evidence,
-// its span from the first cell whose occupied value is not ±0 (NaN counts) to the last, with those
-// values alone and kRunPadding zeros past them.
-void occupiedSpans(const EvidenceRuns& runs, EvidenceRuns& deferred);
 // Every cell of the runs in `cells` (the grid's plane):
 // BayesRule::apply, with p = 0.5 + (pO − pE)/2 (`likelihood` false) or the model's probability.
 void bayes(const EvidenceRuns& runs, BayesCell* cells, bool likelihood);
