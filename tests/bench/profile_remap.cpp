@@ -8,11 +8,13 @@
 // their median CPU time: on a loaded machine the CPU time of one thread varies far less than the
 // wall-clock time, so two builds can be compared on it (a paired A/B of the engine). With a sixth
 // argument N the re-maps run on N threads and the CPU time is all of theirs: what the threads
-// spend in all, duplicated set-up included. In place of `sim` or `stress`, a path to an .sglog
-// log (datasets/office/office.sglog: `sonargrid-cli bench`'s office re-map) maps that log on a grid
-// fitted to its odometry at 5 cm; READINGS is then ignored.
+// spend in all, duplicated set-up included; the median wall-clock time is printed as well. In place
+// of `sim` or `stress`, a path to an .sglog log (datasets/office/office.sglog: `sonargrid-cli
+// bench`'s office re-map) maps that log on a grid fitted to its odometry at 5 cm; READINGS is then
+// ignored.
 
 #include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -87,13 +89,20 @@ int run(int argc, char** argv) {
   const int threads = argc > 6 ? std::max(1, std::atoi(argv[6])) : 1;
   if (timed > 0) {
     sg::ScopedThreadCount count(static_cast<unsigned>(threads));
-    std::vector<double> ms;
+    std::vector<double> ms, wall;
     for (int k = 0; k < timed; ++k) {
+      const auto w0 = std::chrono::steady_clock::now();
       const double t0 = cpuMs(threads > 1);
       mapper.mapDataset(d);
       ms.push_back(cpuMs(threads > 1) - t0);
+      wall.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - w0).count());
     }
     std::sort(ms.begin(), ms.end());
+    std::sort(wall.begin(), wall.end());
+    // The wall-clock time too: at N threads, how much of it the threads spent waiting (for each
+    // other, or for a core the machine gave to other work).
+    std::printf("wall-clock median %.1f ms (min %.1f)\n", wall[wall.size() / 2], wall.front());
     if (threads == 1) {
       std::printf("batch re-map on one thread: median CPU %.1f ms of %d (min %.1f)\n",
                   ms[ms.size() / 2], timed, ms.front());
