@@ -203,9 +203,26 @@ class Grid {
                                                     std::memory_order_relaxed);
   }
 
-  // markWritten() for `count` consecutive cells from `cell` (a run, footprint.h).
+  // markWritten() for `count` consecutive cells from `cell` (a run, footprint.h). In stores of
+  // eight, four or one marks, inline: a call to memset per run, most of them a few dozen cells,
+  // took 4 % of a one-thread re-map of hpf × bayes-recursive.
   void markWritten(std::uint32_t cell, int count) {
-    std::memset(marks_.data() + cell, kObserved | kWritten, static_cast<std::size_t>(count));
+    std::uint8_t* const p = marks_.data() + cell;
+    const auto n = static_cast<std::size_t>(count);
+    constexpr std::uint8_t kBoth = kObserved | kWritten;
+    if (n >= 8) {
+      constexpr std::uint64_t kEight = 0x0101010101010101ull * kBoth;
+      for (std::size_t i = 0; i + 8 < n; i += 8) std::memcpy(p + i, &kEight, 8);
+      std::memcpy(p + n - 8, &kEight, 8);  // the last eight, overlapping the ones before
+    } else if (n >= 4) {
+      constexpr std::uint32_t kFour = 0x01010101u * kBoth;
+      std::memcpy(p, &kFour, 4);
+      std::memcpy(p + n - 4, &kFour, 4);
+    } else if (n > 0) {
+      p[0] = kBoth;
+      p[n / 2] = kBoth;
+      p[n - 1] = kBoth;
+    }
   }
 
   // Whether every cell of the world box [lo, hi] is in the grid.

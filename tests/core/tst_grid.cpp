@@ -68,6 +68,7 @@ class TstGrid : public QObject {
   void slackIsGeometric();
   void growthLimit();
   void observedCells();
+  void runsMarkExactlyTheirCells();
   void dirtyRowsAreTheRowsWritten();
   void clearMakesEveryRowDirty();
   void wrongCellTypeIsRefused();
@@ -204,6 +205,28 @@ void TstGrid::observedCells() {
   for (std::uint32_t i = 0; i < g.cellCount(); ++i) {
     QCOMPARE(std::uint8_t(g.observed(i)), std::uint8_t(written.count(i) ? 1 : 0));
     QCOMPARE(copied[i], std::uint8_t(written.count(i) ? 1 : 0));
+  }
+}
+
+void TstGrid::runsMarkExactlyTheirCells() {
+  // markWritten(cell, count), a run of consecutive cells (the batch path's runs), marks exactly
+  // cells [cell, cell + count): every length from 0 to 40 (eight, four or one marks at a time, the
+  // last ones overlapping), starting anywhere in a word, on a 50 × 2 grid.
+  for (int count = 0; count <= 40; ++count) {
+    for (const std::uint32_t first :
+         {0u, 1u, 3u, 7u, 13u, 59u, 100u - static_cast<unsigned>(count)}) {
+      Grid g = twoPlanes(spec(0, 0, 50, 2));
+      g.takeDirtyRuns();  // every row is dirty after construction
+      g.markWritten(first, count);
+      for (std::uint32_t i = 0; i < g.cellCount(); ++i) {
+        const bool inRun = i >= first && i < first + static_cast<std::uint32_t>(count);
+        QVERIFY2(g.observed(i) == inRun,
+                 qPrintable(QString("run of %1 from %2: cell %3").arg(count).arg(first).arg(i)));
+      }
+      QCOMPARE(g.dirtyRows().size(), count == 0                           ? std::size_t{0}
+                                     : (first < 50 && first + count > 50) ? std::size_t{2}
+                                                                          : std::size_t{1});
+    }
   }
 }
 
