@@ -249,9 +249,9 @@ void KonoligeModel::configure(const ParameterSet& p) {
   lobe_ = SampledFunction(0.0, s_.omega / 2.0, 1024,
                           [sigma](double t) { return std::exp(-t * t / (2.0 * sigma * sigma)); });
   // KonoligeShape::allAtFlatEnd: g <= a0 (the lobe is at most 1, and k >= 0) and 1/d <= 1/d0 (d1,
-  // r >= 0); the float lanes' products round by far less than the factor of 2 between 2⁻²⁶ and
-  // 2⁻²⁵, below which 1 + x stays 1 (at 2⁻²⁴ it would tie). At the sliders' limits a0 φ/(d0 F) is
-  // 5·10⁻⁹ at most, under 2⁻²⁶ ≈ 1.5·10⁻⁸.
+  // r >= 0); the float lanes' products round by far less than the factor of 4 between 2⁻²⁶ and
+  // 2⁻²⁴ (half an ulp of 1), below which 1 + x rounds to 1. At the sliders' limits a0 φ/(d0 F) is
+  // 5.2·10⁻⁹ at most, under 2⁻²⁶ ≈ 1.5·10⁻⁸.
   const NormalTable& normal = normalTable();
   flatEndExact_ = normal.flatCdfIsOne() && s_.attenuation >= 0.0 && s_.attenuationSlope >= 0.0 &&
                   s_.sd0 > 0.0 && s_.sd1 >= 0.0 && s_.falseRate > 0.0 &&
