@@ -20,12 +20,15 @@
 #include <cstdlib>
 #include <ctime>
 #include <exception>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "bench_workload.h"
 #include "sonargrid/concurrency.h"
 #include "sonargrid/io/sglog.h"
+#include "sonargrid/models/lanes.h"
+#include "sonargrid/registry_hooks.h"
 
 namespace {
 
@@ -66,6 +69,17 @@ int run(int argc, char** argv) {
         stderr,
         "usage: profile_remap MODEL RULE [READINGS] [sim|stress|LOG.sglog] [K [THREADS]]\n");
     return 2;
+  }
+  // PROFILE_LANES=four or avx2: the cone models' rows and the rules' run kernels no wider than
+  // that (testing::limitConeLanes), to time the code a CPU without AVX-512 (or AVX2) runs.
+  if (const char* lanes = std::getenv("PROFILE_LANES")) {
+    const std::string limit = lanes;
+    if (limit == "four")
+      sg::testing::limitConeLanes(sg::ConeLanes::Four);
+    else if (limit == "avx2")
+      sg::testing::limitConeLanes(sg::ConeLanes::Avx2);
+    else if (limit != "avx512")
+      throw std::invalid_argument("PROFILE_LANES: four, avx2 or avx512");
   }
   const int readings = argc > 3 ? std::atoi(argv[3]) : 6400;
   const std::string source = argc > 4 ? argv[4] : "sim";
