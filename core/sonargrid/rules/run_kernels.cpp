@@ -9,8 +9,8 @@
 // Dempster–Shafer computes in float, as cell_updates.h does, in eight float lanes (a run's cells,
 // or listed ones; the lanes' formulas are in dempster_shafer_lanes.h); its cells with both kinds of
 // evidence (which no model gives) go through cell_updates.h itself, one at a time. Addition's
-// deferral (occupiedSpans) looks at eight values at a time too. Where the CPU has AVX-512, the run
-// kernels take eight double lanes with masks instead (SG_MASKED_RUNS, below).
+// deferral (deferOccupiedSpan) looks at eight values at a time too. Where the CPU has AVX-512, the
+// run kernels take eight double lanes with masks instead (SG_MASKED_RUNS, below).
 
 #include "sonargrid/rules/run_kernels.h"
 
@@ -171,9 +171,13 @@ struct RunValues {
 // same value from either) and copied back at the end; a run shorter than G is
 // updated on a copy padded with its first cell. The values past a run that the padding lanes read
 // (up to kRunPadding, footprint.h) are ignored. The values are runValues(runs, occupiedOnly).
-template <int G = W, class Cell, class Group>
+// After each run's groups, runDone(run) (nothing by default).
+struct NoRunDone {
+  void operator()(const EvidenceRuns::Run&) const {}
+};
+template <int G = W, class Cell, class Group, class RunDone = NoRunDone>
 [[gnu::always_inline]] inline void eachGroup(const EvidenceRuns& runs, Cell* plane, Group&& group,
-                                             bool occupiedOnly = false) {
+                                             bool occupiedOnly = false, RunDone runDone = {}) {
   static_assert(G - 1 <= static_cast<int>(kRunPadding), "a short run's lanes read past it");
   const auto [empty, occupied, probability] = runValues(runs, occupiedOnly);
   for (const EvidenceRuns::Run& run : runs.runs) {
@@ -185,6 +189,7 @@ template <int G = W, class Cell, class Group>
       for (int j = 0; j < G; ++j) last[j] = cells[j < n ? j : 0];
       group(empty + v, occupied + v, probability + v, last);
       for (int j = 0; j < n; ++j) cells[j] = last[j];
+      runDone(run);
       continue;
     }
     // The last G cells, on the copy, whatever n mod G (without a branch on it: a run's length is
@@ -195,6 +200,7 @@ template <int G = W, class Cell, class Group>
     for (int k = 0; k < tail; k += G)
       group(empty + v + k, occupied + v + k, probability + v + k, cells + k);
     copyLanes<sizeof last>(cells + tail, last);
+    runDone(run);
   }
 }
 
@@ -259,7 +265,7 @@ static_assert(sizeof(LogOddsCell) == sizeof(double));
 static_assert(sizeof(DempsterShaferCell) == 2 * sizeof(float) &&
               sizeof(DempsterShaferCell) == sizeof(double));
 
-// occupiedSpans()' part of a run with evidence: values lo .. hi − 1 of `run` (whose occupied
+// deferOccupiedSpan()'s part of a run with evidence: values lo .. hi − 1 of `run` (whose occupied
 // values start at `occupied`) appended to `deferred` from value `used` (which it advances), with
 // kRunPadding zeros past them, which the lanes read from a short run's start and throw away
 // (eachGroup).
@@ -328,7 +334,7 @@ bool masked() {
 }
 
 // The empty update of every run; with kDefer, in the same pass over the runs, the deferral of each
-// run's occupied span (plain::occupiedSpans), rather than in a second pass.
+// run's occupied span (as plain::deferOccupiedSpan), rather than in a second pass.
 template <bool kDefer>
 __attribute__((SG_MASKED_TARGET)) void additionEmptyMasked(const EvidenceRuns& runs,
                                                            EmptyEvidence* emp,
@@ -347,7 +353,7 @@ __attribute__((SG_MASKED_TARGET)) void additionEmptyMasked(const EvidenceRuns& r
       narrow8(mask, cells + k, additionLanes(widen8(mask, cells + k), widen8(mask, empty + k)));
       if constexpr (kDefer) {
         // A bit for each value not ±0 (unordered or not equal: NaN counts, as in the plain
-        // kernel, plain::occupiedSpans).
+        // kernel, plain::deferOccupiedSpan).
         const unsigned bits = _mm256_mask_cmp_ps_mask(
             mask, _mm256_maskz_loadu_ps(mask, occupied + k), _mm256_setzero_ps(), _CMP_NEQ_UQ);
         if (bits == 0) continue;
@@ -478,10 +484,41 @@ __attribute__((SG_MASKED_TARGET)) void dempsterShaferMasked(const EvidenceRuns& 
 // The four-lane kernels, cloned for AVX2.
 namespace plain {
 
-SG_RUN_CLONES void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp) {
-  eachGroup(runs, emp,
-            [](const float* empty, const float*, const float*, EmptyEvidence* cells)
-                SG_INLINE_LAMBDA { narrow(cells, additionLanes(widen(cells), widen(empty))); });
+// Addition's deferral of one run (AdditionRule::applyRuns), whose occupied values start at
+// `occupied`: its span from the first value that is not ±0 (NaN counts) to the last, if any.
+[[gnu::always_inline]] inline void deferOccupiedSpan(const EvidenceRuns::Run& run,
+                                                     const float* occupied, EvidenceRuns& deferred,
+                                                     std::size_t& used) {
+  const int n = run.count;
+  // Eight values at a time, a bit each for "not ±0" (the vector == holds for ±0 and not for NaN
+  // or denormals, as the scalar == does; nothing in the program sets the CPU to treat denormals
+  // as zero); the last group's bits past the run, read from the room kRunPadding keeps past the
+  // last run, are cleared.
+  int lo = -1, hi = 0;  // the first value of evidence, and one past the last
+  for (int k = 0; k < n; k += 8) {
+    Floats8 v;
+    std::memcpy(&v, occupied + k, sizeof v);
+    unsigned bits = ~static_cast<unsigned>(signBits(reinterpret_cast<Floats8>(v == 0.0f))) & 0xffu;
+    if (n - k < 8) bits &= (1u << (n - k)) - 1u;
+    if (bits == 0) continue;
+    if (lo < 0) lo = k + __builtin_ctz(bits);
+    hi = k + 32 - __builtin_clz(bits);
+  }
+  if (lo >= 0) deferSpan(run, occupied, lo, hi, deferred, used);
+}
+
+// The empty update; with `deferred`, each run's occupied span deferred right after its groups
+// (AdditionRule::applyRuns), in the same pass over the runs.
+SG_RUN_CLONES void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp,
+                                 EvidenceRuns* deferred) {
+  auto update = [](const float* empty, const float*, const float*, EmptyEvidence* cells)
+                    SG_INLINE_LAMBDA { narrow(cells, additionLanes(widen(cells), widen(empty))); };
+  if (!deferred) return eachGroup(runs, emp, update);
+  std::size_t used = deferred->valuesEnd();
+  const float* const occupied = runs.occupied.data();
+  eachGroup(runs, emp, update, false, [&](const EvidenceRuns::Run& run) SG_INLINE_LAMBDA {
+    deferOccupiedSpan(run, occupied + run.first, *deferred, used);
+  });
 }
 
 SG_RUN_CLONES void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ, double scale) {
@@ -526,30 +563,6 @@ SG_RUN_CLONES void logOdds(const EvidenceRuns& runs, LogOddsCell* plane, double 
                 });
 }
 
-SG_RUN_CLONES void occupiedSpans(const EvidenceRuns& runs, EvidenceRuns& deferred) {
-  std::size_t used = deferred.valuesEnd();
-  for (const EvidenceRuns::Run& run : runs.runs) {
-    const float* const occupied = runs.occupied.data() + run.first;
-    const int n = run.count;
-    // Eight values at a time, a bit each for "not ±0" (the vector == holds for ±0 and not for NaN
-    // or denormals, as the scalar == does; nothing in the program sets the CPU to treat denormals
-    // as zero); the last group's bits past the run, read from the room kRunPadding keeps past the
-    // last run, are cleared.
-    int lo = -1, hi = 0;  // the first value of evidence, and one past the last
-    for (int k = 0; k < n; k += 8) {
-      Floats8 v;
-      std::memcpy(&v, occupied + k, sizeof v);
-      unsigned bits =
-          ~static_cast<unsigned>(signBits(reinterpret_cast<Floats8>(v == 0.0f))) & 0xffu;
-      if (n - k < 8) bits &= (1u << (n - k)) - 1u;
-      if (bits == 0) continue;
-      if (lo < 0) lo = k + __builtin_ctz(bits);
-      hi = k + 32 - __builtin_clz(bits);
-    }
-    if (lo >= 0) deferSpan(run, occupied, lo, hi, deferred, used);
-  }
-}
-
 // Eight cells at a time: Dempster–Shafer computes in float, so a group of eight is one AVX2
 // register a lane (two SSE registers in the baseline clone), as wide as the other kernels' four
 // doubles; a lane does what it did in four (tst_fused_runs, tst_rules).
@@ -591,12 +604,10 @@ SG_RUN_CLONES void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* 
 void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp, EvidenceRuns* deferred) {
   if (deferred) {
     SG_RUN_MASKED(additionEmptyMasked<true>(runs, emp, deferred));
-    plain::additionEmpty(runs, emp);
-    plain::occupiedSpans(runs, *deferred);
-    return;
+  } else {
+    SG_RUN_MASKED(additionEmptyMasked<false>(runs, emp, nullptr));
   }
-  SG_RUN_MASKED(additionEmptyMasked<false>(runs, emp, nullptr));
-  plain::additionEmpty(runs, emp);
+  plain::additionEmpty(runs, emp, deferred);
 }
 
 void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ, double scale) {
