@@ -88,13 +88,6 @@ class NormalTable {
     const lanes::Floats zs =
         lanes::clamp(z, lanes::Floats{} - float(kZMax), lanes::Floats{} + float(kZMax)) *
         float(kScale);
-    // Every lane at z = kZMax, the flat end (a cell well short of D, most of a cone): the last row
-    // with w = 0, the same values as below, without the look-ups.
-    if (lanes::all(zs >= float(kIntervals / 2))) {
-      pdf = lanes::Floats{} + lanes_[kIntervals][0];
-      cdf = lanes::Floats{} + lanes_[kIntervals][2];
-      return;
-    }
     lanes::Floats below = __builtin_convertvector(__builtin_convertvector(zs, lanes::Ints),
                                                   lanes::Floats);  // towards zero
     below = below > zs ? below - 1.0f : below;                     // floor
