@@ -93,7 +93,7 @@ struct EvidenceRuns {
     int count;
     std::uint32_t first;
   };
-  std::vector<Run> runs;
+  std::vector<Run, UninitialisedAllocator<Run>> runs;
   std::vector<float, UninitialisedAllocator<float>> empty, occupied, probability;
   void clear() { runs.clear(); }
   // One past the last run's values: where a writer appends the next run's (runs are appended in

@@ -132,11 +132,13 @@ struct LaneTypes<lanes::kWideWidth> {
 // (which it advances): the same formula per lane, the same values, no 4 × 4 transpose; in W = 4
 // lanes, or 8 (coneRunsWide). The row is one run unless a lane at the edge of a region writes
 // nothing. `out`'s arrays have room for W − 1 values past the row, and `kept` for a mask per cell
-// and W − 1 more.
+// and W − 1 more. The row's runs are stored at runEnd, which it advances, in room sized once a
+// reading (coneRunsIn): no call in the rows' loop (push_back's growth was one), so the shape's
+// broadcast values can stay in registers from row to row instead of being spilled around it.
 template <class Shape, int W>
 [[gnu::always_inline]] inline void coneRowRuns(const Shape& model, const ConeRow& row,
                                                EvidenceRuns& out, std::size_t& next,
-                                               std::int32_t* kept) {
+                                               std::int32_t* kept, EvidenceRuns::Run*& runEnd) {
   // The shape's and the row's values as locals: the loop's float and int stores could otherwise
   // alias them, and the compiler loaded and broadcast every one of them again per group of lanes.
   static_assert(std::is_trivially_copyable_v<Shape>);
@@ -182,7 +184,7 @@ template <class Shape, int W>
   const auto first = static_cast<std::uint32_t>(next);
   next += static_cast<std::size_t>(count);
   if (all) {
-    out.runs.push_back(EvidenceRuns::Run{row.cell, count, first});
+    *runEnd++ = EvidenceRuns::Run{row.cell, count, first};
     return;
   }
   // A cell the reading says nothing about (rare, at the edge of a region) splits the row.
@@ -191,14 +193,14 @@ template <class Shape, int W>
     const bool keep = kept[k] != 0;
     if (keep && begin < 0) begin = k;
     if (!keep && begin >= 0) {
-      out.runs.push_back(EvidenceRuns::Run{row.cell + static_cast<std::uint32_t>(begin), k - begin,
-                                           first + static_cast<std::uint32_t>(begin)});
+      *runEnd++ = EvidenceRuns::Run{row.cell + static_cast<std::uint32_t>(begin), k - begin,
+                                    first + static_cast<std::uint32_t>(begin)};
       begin = -1;
     }
   }
   if (begin >= 0) {
-    out.runs.push_back(EvidenceRuns::Run{row.cell + static_cast<std::uint32_t>(begin),
-                                         count - begin, first + static_cast<std::uint32_t>(begin)});
+    *runEnd++ = EvidenceRuns::Run{row.cell + static_cast<std::uint32_t>(begin), count - begin,
+                                  first + static_cast<std::uint32_t>(begin)};
   }
 }
 
@@ -213,10 +215,16 @@ template <class Shape, int W>
   const Shape shape = pb.shape;  // a local: the rows' stores cannot alias it
   std::size_t next = out.valuesEnd();
   thread_local std::vector<std::int32_t> kept;  // a mask per cell of a row
+  std::int32_t* keptData = nullptr;
+  const std::size_t runsBefore = out.runs.size();
+  EvidenceRuns::Run* runEnd = nullptr;
   // Eight lanes are built for AVX2, which rounds in one instruction.
   forEachConeRow<W == 8>(
       beam.sensor, pb.reach, pb.halfAngle, grid, tables,
       [&](std::size_t bound) {
+        // A row of n cells gives at most (n + 1) / 2 <= n runs: room for `bound` of them.
+        out.runs.resize(runsBefore + bound);
+        runEnd = out.runs.data() + runsBefore;
         // Leaves new values unwritten (UninitialisedAllocator); the room past the last run
         // (kRunPadding, footprint.h) also takes the W − 1 values a row's last lanes write.
         const std::size_t need = next + bound + kRunPadding;
@@ -226,10 +234,12 @@ template <class Shape, int W>
           out.probability.resize(need);
         }
         if (kept.size() < bound + W) kept.resize(bound + W);
+        keptData = kept.data();
       },
       [&](const ConeRow& row)
-          SG_ROW_INLINE { coneRowRuns<Shape, W>(shape, row, out, next, kept.data()); },
+          SG_ROW_INLINE { coneRowRuns<Shape, W>(shape, row, out, next, keptData, runEnd); },
       window);
+  out.runs.resize(runEnd ? static_cast<std::size_t>(runEnd - out.runs.data()) : runsBefore);
 }
 
 #ifdef SG_WIDE_LANES
