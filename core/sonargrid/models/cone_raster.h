@@ -124,8 +124,20 @@ template <bool kRound = false, class Reserve, class RowFn>
   // The per-cell angle test corrects by 2π once, so the heading itself must be in [-π, π).
   const double h = wrapAngle(sensor.heading);
   const double R = reach / c;
-  const double d1x = std::cos(h - halfAngle), d1y = std::sin(h - halfAngle);  // right edge
-  const double d2x = std::cos(h + halfAngle), d2y = std::sin(h + halfAngle);  // left edge
+  // The edges' directions by the angle sums, from the heading's sine and cosine and the
+  // half-angle's, kept per thread while it is the same (a model's setting): one sine and cosine a
+  // reading where cos(h ∓ halfAngle) and sin(h ∓ halfAngle) took two. They are then off by an ulp
+  // or two, far within kSlack below: the spans only bound the cells, which the per-cell test picks
+  // exactly, so every row gets the same cells.
+  thread_local double lastHalf = std::numeric_limits<double>::quiet_NaN(), cosHalf, sinHalf;
+  if (!(halfAngle == lastHalf)) {
+    lastHalf = halfAngle;
+    cosHalf = std::cos(halfAngle);
+    sinHalf = std::sin(halfAngle);
+  }
+  const double ch = std::cos(h), sh = std::sin(h);
+  const double d1x = ch * cosHalf + sh * sinHalf, d1y = sh * cosHalf - ch * sinHalf;  // right edge
+  const double d2x = ch * cosHalf - sh * sinHalf, d2y = sh * cosHalf + ch * sinHalf;  // left edge
   // Spans are computed for the region grown by kSlack cells (perpendicular distance), far more than
   // the float tables' error, so they hold every cell the per-cell test below accepts.
   constexpr double kSlack = 1e-3;
