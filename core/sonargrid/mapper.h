@@ -87,11 +87,12 @@ class Mapper {
   // Batch mapping: resets, then integrates every scan (readings up to `until`). Checks `cancel`
   // every few hundred readings; returns false when it was cancelled (the grid is then unfinished:
   // map again or reset before using it). A large log is mapped on the thread policy's threads
-  // (concurrency.h), in stripes of grid rows (HIMM's axis: chunks of readings whose cells any
-  // thread lists and one folds in, in log order; with an observer, footprints computed ahead and
-  // applied in log order); every cell still sees the readings in log order, so the result is
-  // bit-identical to integrate() scan by scan for any number of threads. An error on any thread
-  // (or a thread that cannot be started) is thrown here once every thread has stopped.
+  // (concurrency.h), each thread with its own grid rows (row_bands.h; HIMM's axis: chunks of
+  // readings whose cells any thread lists and one folds in, in log order; with an observer,
+  // footprints computed ahead and applied in log order); every cell still sees the readings in
+  // log order, so the result is bit-identical to integrate() scan by scan for any number of
+  // threads. An error on any thread (or a thread that cannot be started) is thrown here once
+  // every thread has stopped.
   bool mapDataset(const Dataset& dataset, double until = std::numeric_limits<double>::infinity(),
                   const std::atomic<bool>* cancel = nullptr);
 

@@ -25,6 +25,7 @@
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/mapper.h"
 #include "sonargrid/registry_hooks.h"
+#include "sonargrid/row_bands.h"
 #include "sonargrid/sweep/parameter_sweep.h"
 
 using namespace sg;
@@ -258,6 +259,10 @@ class TstConcurrency : public QObject {
   void startFailureStopsTheStarted();
   void nestedRunsUseOneThread();
 
+  void balancedBandsSplitTheWork_data();
+  void balancedBandsSplitTheWork();
+  void estimatedRowWorkSpreadsEachBeam();
+
   void failureReachesTheCaller_data();
   void failureReachesTheCaller();
   void sameGridAfterAFailure_data();
@@ -467,6 +472,81 @@ void TstConcurrency::startFailureStopsTheStarted() {
   std::atomic<int> again{0};
   runParallel(4, [&](unsigned) { ++again; });
   QCOMPARE(again.load(), 4);
+}
+
+void TstConcurrency::balancedBandsSplitTheWork_data() {
+  // Band k ends at the first row where the work before it plus half its own reaches (k + 1) /
+  // count of the total (row_bands.h); the ends below are worked out by hand from that rule.
+  QTest::addColumn<QList<double>>("work");
+  QTest::addColumn<int>("count");
+  QTest::addColumn<QList<int>>("ends");
+  // Total 8, target 4: rows 0-3 reach 0.5, 1.5, 2.5, 3.5 with their halves; row 4 reaches 4.5.
+  QTest::newRow("even work, halves")
+      << QList<double>{1, 1, 1, 1, 1, 1, 1, 1} << 2 << QList<int>{4, 8};
+  // Target 4: row 0 reaches 2 with its half, then row 1 already 4 + 0.
+  QTest::newRow("work at both ends")
+      << QList<double>{4, 0, 0, 0, 0, 0, 0, 4} << 2 << QList<int>{1, 8};
+  // Target 4: rows 0, 1 reach 0, row 2 reaches 3 with its half (< 4), row 3 then 6.
+  QTest::newRow("one heavy row") << QList<double>{0, 0, 6, 0, 0, 2} << 2 << QList<int>{3, 6};
+  // Targets 4 and 8 of 12: with their halves rows 0-2 reach 1, 3, 5 and rows 2-4 5, 7, 9.
+  QTest::newRow("three bands") << QList<double>{2, 2, 2, 2, 2, 2} << 3 << QList<int>{2, 4, 6};
+  // No work at all: the rows shared out evenly, 5 · 1/3 and 5 · 2/3 rounded down.
+  QTest::newRow("no work") << QList<double>{0, 0, 0, 0, 0} << 3 << QList<int>{1, 3, 5};
+  // More bands than rows: a band may be empty, and the rows are still all covered once.
+  QTest::newRow("more bands than rows") << QList<double>{1, 1} << 3 << QList<int>{1, 1, 2};
+  QTest::newRow("one band") << QList<double>{3, 0, 1} << 1 << QList<int>{3};
+}
+
+void TstConcurrency::balancedBandsSplitTheWork() {
+  QFETCH(QList<double>, work);
+  QFETCH(int, count);
+  QFETCH(QList<int>, ends);
+  const std::vector<double> rows(work.begin(), work.end());
+  const std::vector<RowWindow> bands = balancedBands(rows, static_cast<unsigned>(count));
+  QCOMPARE(static_cast<int>(bands.size()), count);
+  int begin = 0;
+  for (int k = 0; k < count; ++k) {
+    // Consecutive, in order, and plain bands: every row of [begin, end), no stripes.
+    QCOMPARE(bands[k].begin, begin);
+    QCOMPARE(bands[k].end, ends[k]);
+    QCOMPARE(bands[k].period, 1);
+    begin = bands[k].end;
+  }
+  QCOMPARE(begin, static_cast<int>(rows.size()));
+}
+
+void TstConcurrency::estimatedRowWorkSpreadsEachBeam() {
+  // Ten rows of 1 m from y = 0. A beam spreads r² (r in cells) over the grid's rows within r of
+  // its sensor: from floor(y − r) to floor(y + r), clamped to the grid.
+  GridSpec grid;
+  grid.cellSize = 1.0;
+  grid.width = 4;
+  grid.height = 10;
+  auto beam = [](double y, double range) {
+    Beam b;
+    b.sensor = Pose2D(1.0, y, 0.0);
+    b.range = range;
+    b.maxRange = 5.0;
+    return b;
+  };
+  static_assert(kEstimateStride == 4, "the beams below are laid out for a stride of 4");
+  std::vector<Beam> beams(13, beam(4.5, 1.0));  // only 0, 4, 8 and 12 are looked at
+  beams[0] = beam(4.5, 2.0);                    // rows floor(2.5) = 2 to floor(6.5) = 6: 4 / 5 each
+  beams[4] = beam(0.5, 2.0);                    // rows 0 (from −2, clamped) to 2: 4 / 3 each
+  beams[8] = beam(4.5, Reading::kNoEcho);  // no echo: 5 m, capped at 3 m: rows 1 to 7, 9 / 7 each
+  beams[12] = beam(-10.0, 2.0);            // rows −12 to −8: none in the grid, nothing
+  const std::vector<double> without = estimatedRowWork(beams, grid, 3.0, false);
+  const std::vector<double> with = estimatedRowWork(beams, grid, 3.0, true);
+  const double expectedWithout[10] = {4.0 / 3, 4.0 / 3, 4.0 / 3 + 0.8, 0.8, 0.8, 0.8, 0.8, 0, 0, 0};
+  QCOMPARE(static_cast<int>(without.size()), 10);
+  QCOMPARE(static_cast<int>(with.size()), 10);
+  for (int row = 0; row < 10; ++row) {
+    QVERIFY2(std::abs(without[row] - expectedWithout[row]) < 1e-12,
+             qPrintable(QString::number(row)));
+    const double noEcho = row >= 1 && row <= 7 ? 9.0 / 7 : 0.0;
+    QVERIFY2(std::abs(with[row] - expectedWithout[row] - noEcho) < 1e-12,
+             qPrintable(QString::number(row)));
+  }
 }
 
 void TstConcurrency::nestedRunsUseOneThread() {
