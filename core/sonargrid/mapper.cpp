@@ -464,11 +464,21 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
   };
 
   if (!totals) {
+    // The rows a beam can write lie within the model's reach (for any range) of its sensor's row,
+    // and a few rows more for the cell the sensor is in and the spans' margins (cone_raster.h):
+    // a beam whose sensor is further than that from a thread's band is passed over before the
+    // model sets it up (its constants, the cone's edges), which the band's rows would then cut
+    // to nothing.
+    const GridSpec& spec = grid_.spec();
+    const double reachRows = model_->reach(ring_.maxRange) / spec.cellSize + 4.0;
     runThreads(threads, [&](unsigned k) {
       Footprint fp;
       EvidenceRuns runs;
+      const double below = rows[k].begin - reachRows, above = rows[k].end + reachRows;
       for (std::size_t i = 0; i < n; ++i) {
         if (stopping(i)) return halt(i);
+        const double row = (beams[i].sensor.y() - spec.origin.y()) / spec.cellSize;
+        if (row < below || row > above) continue;  // (a NaN row goes on, as on one thread)
         runs.clear();
         if (model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], runs)) {
           applyRuns(runs, nullptr);

@@ -96,6 +96,44 @@ const Dataset& workload() {
   return d;
 }
 
+// A 2 × 30 m grid at 5 cm (600 rows), six times the sonar's reach: on several threads each
+// thread's band of rows (row_bands.h) is far from most beams, which it passes over before the
+// model sets them up (Mapper::integrateStripes).
+GridSpec tallGrid() {
+  GridSpec g;
+  g.origin = Position(-1.0, 0.0);
+  g.cellSize = 0.05;
+  g.width = 40;
+  g.height = 600;
+  return g;
+}
+
+// 270 scans of the 16-sonar ring (4320 readings) at random places along the tall grid (the same
+// sequence every run), at any heading, ranges from 0.05 m to beyond the maximum (no echo).
+Dataset tallGenerated() {
+  Dataset d;
+  d.name = "tall";
+  d.ring = SonarRing::pioneer3dx();
+  std::uint64_t state = 777;
+  auto uniform = [&state](double lo, double hi) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1p-53;
+  };
+  for (int k = 0; k < 270; ++k) {
+    Scan s;
+    s.time = 0.1 * k;
+    s.odometry = Pose2D(uniform(-0.7, 0.7), uniform(0.3, 29.7), uniform(-3.14, 3.14));
+    s.truth = s.odometry;
+    for (std::uint16_t i = 0; i < d.ring.size(); ++i) {
+      double range = uniform(0.05, 5.6);
+      if (range >= d.ring.maxRange) range = Reading::kNoEcho;
+      s.readings.push_back(Reading{i, range, s.time + 0.002 * i});
+    }
+    d.scans.push_back(std::move(s));
+  }
+  return d;
+}
+
 // Whether two grids of one rule hold the same bits in every plane, and the same observed marks.
 template <class... Cells>
 bool samePlanes(const Grid& a, const Grid& b) {
@@ -161,6 +199,8 @@ class TstFusedRuns : public QObject {
   void runsGiveApplysBits();
   void deferredRunsGiveApplysBits();
   void occupiedTotalAtEveryWidth();
+  void tallGridThreadsPassOverFarBeams_data();
+  void tallGridThreadsPassOverFarBeams();
 };
 
 void TstFusedRuns::runsGiveTheFootprintPathsBits_data() {
@@ -623,6 +663,46 @@ void TstFusedRuns::occupiedTotalAtEveryWidth() {
   QCOMPARE(occupiedFixedPoint(1e30f), std::int64_t{1} << 62);
   QCOMPARE(occupiedFixedPoint(-1e30f), -(std::int64_t{1} << 62));
   QCOMPARE(occupiedFixedPoint(1e-40f), std::int64_t{0});
+}
+
+void TstFusedRuns::tallGridThreadsPassOverFarBeams_data() {
+  QTest::addColumn<QString>("model");
+  QTest::addColumn<QString>("rule");
+  QTest::addColumn<bool>("noEchoFree");
+  // Rules without totals (their threads take bands); with no-echo updates on too, whose cones
+  // reach the maximum range, as far as any beam of the model can.
+  for (const char* m : {"hpf", "konolige", "murphy", "parameterized"}) {
+    for (const char* r : {"bayes", "log", "dempster-shafer"}) {
+      for (const bool noEcho : {false, true}) {
+        QTest::addRow("%s/%s%s", m, r, noEcho ? " no_echo=1" : "")
+            << QString(m) << QString(r) << noEcho;
+      }
+    }
+  }
+}
+
+void TstFusedRuns::tallGridThreadsPassOverFarBeams() {
+  QFETCH(QString, model);
+  QFETCH(QString, rule);
+  QFETCH(bool, noEchoFree);
+  static const Dataset d = tallGenerated();
+  const MapperSettings settings = rowSettings(model.toStdString(), rule.toStdString(), noEchoFree);
+  Mapper oracle(d.ring, tallGrid(), settings);
+  NullObserver observer;
+  oracle.setObserver(&observer);  // the footprint path, one reading at a time
+  {
+    ScopedThreadCount one(1);
+    QVERIFY(oracle.mapDataset(d));
+  }
+  for (const unsigned threads : {2u, 3u}) {
+    ScopedThreadCount count(threads);
+    Mapper runs(d.ring, tallGrid(), settings);
+    QVERIFY(runs.mapDataset(d));
+    QCOMPARE(runs.readingsIntegrated(), d.readingCount());
+    QVERIFY2(
+        sameGrid(settings.rule, oracle.storage(), runs.storage()),
+        qPrintable(QString("%1 threads: the grid differs from the footprint path's").arg(threads)));
+  }
 }
 
 QTEST_APPLESS_MAIN(TstFusedRuns)
