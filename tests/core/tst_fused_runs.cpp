@@ -50,6 +50,39 @@ GridSpec smallGrid() {
   return g;
 }
 
+// A fixed linear congruential sequence: uniform(lo, hi) is the same every run.
+struct Uniform {
+  std::uint64_t state;
+  double operator()(double lo, double hi) {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1p-53;
+  }
+};
+
+// 270 scans of the 16-sonar Pioneer ring, 4320 readings, above the mapper's 4096 below which it
+// keeps to one thread: scan k at poseOf(k, uniform), each range drawn from [0.05, 5.6) m, and a
+// no-echo at or beyond the maximum range and where noEcho(k, sonar) says.
+template <class PoseOf, class NoEcho>
+Dataset ringLog(const char* name, std::uint64_t seed, PoseOf poseOf, NoEcho noEcho) {
+  Dataset d;
+  d.name = name;
+  d.ring = SonarRing::pioneer3dx();
+  Uniform uniform{seed};
+  for (int k = 0; k < 270; ++k) {
+    Scan s;
+    s.time = 0.1 * k;
+    s.odometry = poseOf(k, uniform);
+    s.truth = s.odometry;
+    for (std::uint16_t i = 0; i < d.ring.size(); ++i) {
+      double range = uniform(0.05, 5.6);
+      if (noEcho(k, i) || range >= d.ring.maxRange) range = Reading::kNoEcho;
+      s.readings.push_back(Reading{i, range, s.time + 0.002 * i});
+    }
+    d.scans.push_back(std::move(s));
+  }
+  return d;
+}
+
 // A generated log (a fixed linear congruential sequence, so the same every run): 270 scans of the
 // 16-sonar Pioneer ring, 4320 readings, above the mapper's 4096 below which it keeps to one thread.
 // The robot is placed anywhere in the grid, every ninth scan within 5 cm of an edge or a corner
@@ -58,37 +91,22 @@ GridSpec smallGrid() {
 // on it). Ranges run from 0.05 m to beyond the maximum: every fifth reading, and any beyond 5 m,
 // is a no-echo.
 Dataset generated() {
-  Dataset d;
-  d.name = "generated";
-  d.ring = SonarRing::pioneer3dx();
-  std::uint64_t state = 12345;
-  auto uniform = [&state](double lo, double hi) {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1p-53;
-  };
   const GridSpec g = smallGrid();
   const double x0 = g.origin.x(), x1 = x0 + g.widthMetres();
   const double y0 = g.origin.y(), y1 = y0 + g.heightMetres();
-  for (int k = 0; k < 270; ++k) {
-    Scan s;
-    s.time = 0.1 * k;
-    double x = uniform(x0 + 0.3, x1 - 0.3), y = uniform(y0 + 0.3, y1 - 0.3);
-    if (k % 9 == 0) {  // at an edge or in a corner
-      x = (k / 9) % 3 == 0 ? x0 + 0.03 : (k / 9) % 3 == 1 ? x1 - 0.03 : x;
-      y = (k / 9) % 2 == 0 ? y0 + 0.02 : y1 - 0.04;
-    }
-    double heading = uniform(-std::numbers::pi, std::numbers::pi);
-    if (k % 8 == 0) heading = k % 16 == 0 ? std::numbers::pi : -std::numbers::pi;
-    s.odometry = Pose2D(x, y, heading);
-    s.truth = s.odometry;
-    for (std::uint16_t i = 0; i < d.ring.size(); ++i) {
-      double range = uniform(0.05, 5.6);
-      if ((k * 16 + i) % 5 == 0 || range >= d.ring.maxRange) range = Reading::kNoEcho;
-      s.readings.push_back(Reading{i, range, s.time + 0.002 * i});
-    }
-    d.scans.push_back(std::move(s));
-  }
-  return d;
+  return ringLog(
+      "generated", 12345,
+      [&](int k, Uniform& uniform) {
+        double x = uniform(x0 + 0.3, x1 - 0.3), y = uniform(y0 + 0.3, y1 - 0.3);
+        if (k % 9 == 0) {  // at an edge or in a corner
+          x = (k / 9) % 3 == 0 ? x0 + 0.03 : (k / 9) % 3 == 1 ? x1 - 0.03 : x;
+          y = (k / 9) % 2 == 0 ? y0 + 0.02 : y1 - 0.04;
+        }
+        double heading = uniform(-std::numbers::pi, std::numbers::pi);
+        if (k % 8 == 0) heading = k % 16 == 0 ? std::numbers::pi : -std::numbers::pi;
+        return Pose2D(x, y, heading);
+      },
+      [](int k, int sonar) { return (k * 16 + sonar) % 5 == 0; });
 }
 
 const Dataset& workload() {
@@ -108,30 +126,16 @@ GridSpec tallGrid() {
   return g;
 }
 
-// 270 scans of the 16-sonar ring (4320 readings) at random places along the tall grid (the same
-// sequence every run), at any heading, ranges from 0.05 m to beyond the maximum (no echo).
+// ringLog()'s scans at random places along the tall grid, at any heading, no-echo readings only
+// at or beyond the maximum range.
 Dataset tallGenerated() {
-  Dataset d;
-  d.name = "tall";
-  d.ring = SonarRing::pioneer3dx();
-  std::uint64_t state = 777;
-  auto uniform = [&state](double lo, double hi) {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1p-53;
-  };
-  for (int k = 0; k < 270; ++k) {
-    Scan s;
-    s.time = 0.1 * k;
-    s.odometry = Pose2D(uniform(-0.7, 0.7), uniform(0.3, 29.7), uniform(-3.14, 3.14));
-    s.truth = s.odometry;
-    for (std::uint16_t i = 0; i < d.ring.size(); ++i) {
-      double range = uniform(0.05, 5.6);
-      if (range >= d.ring.maxRange) range = Reading::kNoEcho;
-      s.readings.push_back(Reading{i, range, s.time + 0.002 * i});
-    }
-    d.scans.push_back(std::move(s));
-  }
-  return d;
+  return ringLog(
+      "tall", 777,
+      [](int, Uniform& uniform) {
+        const double x = uniform(-0.7, 0.7), y = uniform(0.3, 29.7);
+        return Pose2D(x, y, uniform(-3.14, 3.14));
+      },
+      [](int, int) { return false; });
 }
 
 // Whether two grids of one rule hold the same bits in every plane, and the same observed marks.
