@@ -415,7 +415,8 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
   //   on the 100k workload and 0.95–0.97 on the office log; docs/performance.md).
   const std::size_t n = beams.size();
   const bool totals = rule_->needsTotals();
-  std::vector<RowWindow> rows(threads);  // thread k's rows
+  const double reach = model_->reach(ring_.maxRange);  // for any range (the grid's growth too)
+  std::vector<RowWindow> rows(threads);                // thread k's rows
   if (totals) {
     for (unsigned k = 0; k < threads; ++k) {
       rows[k].stripe = kStripeRows;
@@ -429,8 +430,7 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
     const bool noEchoWrites =
         model_->evaluate(maxRange / 2.0, 0.0, Reading::kNoEcho, maxRange).region !=
         BeamRegion::Outside;
-    rows = balancedBands(
-        estimatedRowWork(beams, grid_.spec(), model_->reach(maxRange), noEchoWrites), threads);
+    rows = balancedBands(estimatedRowWork(beams, grid_.spec(), reach, noEchoWrites), threads);
   }
 
   // The threads in step (rules with totals, below).
@@ -470,7 +470,7 @@ bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<
     // model sets it up (its constants, the cone's edges), which the band's rows would then cut
     // to nothing.
     const GridSpec& spec = grid_.spec();
-    const double reachRows = model_->reach(ring_.maxRange) / spec.cellSize + 4.0;
+    const double reachRows = reach / spec.cellSize + 4.0;
     runThreads(threads, [&](unsigned k) {
       Footprint fp;
       EvidenceRuns runs;
