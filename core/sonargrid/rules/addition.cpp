@@ -49,7 +49,7 @@ void AdditionRule::applyPart(const Footprint& fp, const FootprintTotals& totals,
 void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const {
   if (!normalise_) {
     runs::additionEmpty(runs, grid.cells<EmptyEvidence>(0));
-    runs::additionOccupied(runs, grid.cells<OccupiedEvidence>(1), 1.0);
+    runs::additionOccupied(runs, 0, runs.runs.size(), grid.cells<OccupiedEvidence>(1), 1.0);
     return;
   }
   // The occupied cells wait for the reading's total (applyDeferred). A cell of no occupied evidence
@@ -60,12 +60,13 @@ void AdditionRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns*
   runs::additionEmpty(runs, grid.cells<EmptyEvidence>(0), deferred);
 }
 
-void AdditionRule::applyDeferred(const EvidenceRuns& deferred, const FootprintTotals& totals,
+void AdditionRule::applyDeferred(const EvidenceRuns& deferred, std::size_t firstRun,
+                                 std::size_t endRun, const FootprintTotals& totals,
                                  Grid& grid) const {
   // As applyPart() with the cells' empty evidence applied already.
   double scale = 1.0;
   if (normalise_ && totals.occupied > 0) scale = 1.0 / totals.occupiedSum();
-  runs::additionOccupied(deferred, grid.cells<OccupiedEvidence>(1), scale);
+  runs::additionOccupied(deferred, firstRun, endRun, grid.cells<OccupiedEvidence>(1), scale);
 }
 
 double AdditionRule::nativeOf(const EmptyEvidence& emp, const OccupiedEvidence& occ) const {

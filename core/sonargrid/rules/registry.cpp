@@ -95,12 +95,15 @@ void UpdateRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* d
   apply(part, grid);
 }
 
-void UpdateRule::applyDeferred(const EvidenceRuns& deferred, const FootprintTotals& totals,
+void UpdateRule::applyDeferred(const EvidenceRuns& deferred, std::size_t firstRun,
+                               std::size_t endRun, const FootprintTotals& totals,
                                Grid& grid) const {
   thread_local Footprint part;
   part.clear();
-  for (const EvidenceRuns::Run& run : deferred.runs)
+  for (std::size_t r = firstRun; r < endRun; ++r) {
+    const EvidenceRuns::Run& run = deferred.runs[r];
     for (int k = 0; k < run.count; ++k) part.cells.push_back(cellrule::cellOfRun(deferred, run, k));
+  }
   applyPart(part, totals, grid);
 }
 

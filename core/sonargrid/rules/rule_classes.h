@@ -33,8 +33,9 @@ class AdditionRule final : public RuleOnCells<AdditionRule, EmptyEvidence, Occup
   void applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const override;
   bool needsTotals() const override { return normalise_; }
   void applyPart(const Footprint& part, const FootprintTotals& totals, Grid& grid) const override;
-  void applyDeferred(const EvidenceRuns& deferred, const FootprintTotals& totals,
-                     Grid& grid) const override;
+  using UpdateRule::applyDeferred;
+  void applyDeferred(const EvidenceRuns& deferred, std::size_t firstRun, std::size_t endRun,
+                     const FootprintTotals& totals, Grid& grid) const override;
 
   double occupancyOf(const EmptyEvidence& e, const OccupiedEvidence& o) const;
   double nativeOf(const EmptyEvidence& e, const OccupiedEvidence& o) const;

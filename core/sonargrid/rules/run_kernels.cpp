@@ -163,6 +163,18 @@ struct RunValues {
           occupiedOnly ? occupied : runs.probability.data()};
 }
 
+// Runs [first, end) of some runs (past their last, up to it): one reading's deferred runs among
+// those of a batch (Mapper::integrateBands); all of them by default.
+struct RunRange {
+  std::size_t first = 0;
+  std::size_t end = SIZE_MAX;
+  std::span<const EvidenceRuns::Run> of(const EvidenceRuns& runs) const {
+    const std::size_t size = runs.runs.size();
+    const std::size_t last = std::min(end, size);
+    return {runs.runs.data() + std::min(first, last), runs.runs.data() + last};
+  }
+};
+
 // group(empty, occupied, probability, cells) for every G consecutive cells of every run: G values
 // from each array, G cells to update in place (G is W unless a kernel asks for more:
 // Dempster–Shafer's eight float lanes). No lane touches a cell past its run (another row's,
@@ -172,15 +184,17 @@ struct RunValues {
 // updated on a copy padded with its first cell. The values past a run that the padding lanes read
 // (up to kRunPadding, footprint.h) are ignored. The values are runValues(runs, occupiedOnly).
 // After each run's groups, runDone(run) (nothing by default).
+// Only the runs of `range`, where one is given.
 struct NoRunDone {
   void operator()(const EvidenceRuns::Run&) const {}
 };
 template <int G = W, class Cell, class Group, class RunDone = NoRunDone>
 [[gnu::always_inline]] inline void eachGroup(const EvidenceRuns& runs, Cell* plane, Group&& group,
-                                             bool occupiedOnly = false, RunDone runDone = {}) {
+                                             bool occupiedOnly = false, RunDone runDone = {},
+                                             RunRange range = {}) {
   static_assert(G - 1 <= static_cast<int>(kRunPadding), "a short run's lanes read past it");
   const auto [empty, occupied, probability] = runValues(runs, occupiedOnly);
-  for (const EvidenceRuns::Run& run : runs.runs) {
+  for (const EvidenceRuns::Run& run : range.of(runs)) {
     Cell* const cells = plane + run.cell;
     const std::size_t v = run.first;
     const int n = run.count;
@@ -310,13 +324,13 @@ inline __mmask8 laneMask(int left) {
 }
 
 // group(mask, empty, occupied, probability, cells) for every eight consecutive cells of every run,
-// the last group of a run masked to its cells: eachGroup() without the copies. `occupiedOnly` as
-// in eachGroup().
+// the last group of a run masked to its cells: eachGroup() without the copies. `occupiedOnly` and
+// `range` as in eachGroup().
 template <class Cell, class Group>
 SG_MASKED_INLINE inline void eachMasked(const EvidenceRuns& runs, Cell* plane, Group&& group,
-                                        bool occupiedOnly = false) {
+                                        bool occupiedOnly = false, RunRange range = {}) {
   const auto [empty, occupied, probability] = runValues(runs, occupiedOnly);
-  for (const EvidenceRuns::Run& run : runs.runs) {
+  for (const EvidenceRuns::Run& run : range.of(runs)) {
     Cell* const cells = plane + run.cell;
     const std::size_t v = run.first;
     const int n = run.count;  // a local: the cells' stores could otherwise alias it
@@ -366,14 +380,15 @@ __attribute__((SG_MASKED_TARGET)) void additionEmptyMasked(const EvidenceRuns& r
 }
 
 __attribute__((SG_MASKED_TARGET)) void additionOccupiedMasked(const EvidenceRuns& runs,
-                                                              OccupiedEvidence* occ, double scale) {
+                                                              RunRange range, OccupiedEvidence* occ,
+                                                              double scale) {
   eachMasked(
       runs, occ,
       [scale](__mmask8 m, const float*, const float* occupied, const float*,
               OccupiedEvidence* cells) SG_MASKED_INLINE {
         narrow8(m, cells, additionLanes(widen8(m, cells), widen8(m, occupied) * scale));
       },
-      true);
+      true, range);
 }
 
 __attribute__((SG_MASKED_TARGET)) void bayesMasked(const EvidenceRuns& runs, BayesCell* plane,
@@ -414,12 +429,13 @@ __attribute__((SG_MASKED_TARGET)) void logOddsMasked(const EvidenceRuns& runs, L
       });
 }
 
-__attribute__((SG_MASKED_TARGET)) std::int64_t occupiedTotalMasked(const EvidenceRuns& runs) {
+__attribute__((SG_MASKED_TARGET)) std::int64_t occupiedTotalMasked(const EvidenceRuns& runs,
+                                                                   RunRange range) {
   // Each value's share as occupiedFixedPoint(float) computes it (NaN 0, clamped to ±2^22, times
   // 2^40, truncated), summed in 64-bit lanes modulo 2^64: the same sum in any order.
   const Doubles8 zero{};
   __m512i sum = _mm512_setzero_si512();
-  for (const EvidenceRuns::Run& run : runs.runs) {
+  for (const EvidenceRuns::Run& run : range.of(runs)) {
     const float* const occupied = runs.occupied.data() + run.first;
     const int n = run.count;
     for (int k = 0; k < n; k += 8) {
@@ -521,14 +537,15 @@ SG_RUN_CLONES void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp,
   });
 }
 
-SG_RUN_CLONES void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ, double scale) {
+SG_RUN_CLONES void additionOccupied(const EvidenceRuns& runs, RunRange range, OccupiedEvidence* occ,
+                                    double scale) {
   // po > 0 exactly where c.occupied > 0, the scale being positive and finite: the product of a
   // float and a scale of at least 2^-63 cannot round to 0 in double.
   eachGroup(
       runs, occ,
       [scale](const float*, const float* occupied, const float*, OccupiedEvidence* cells)
           SG_INLINE_LAMBDA { narrow(cells, additionLanes(widen(cells), widen(occupied) * scale)); },
-      true);
+      true, NoRunDone{}, range);
 }
 
 SG_RUN_CLONES void bayes(const EvidenceRuns& runs, BayesCell* plane, bool likelihood) {
@@ -610,9 +627,11 @@ void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp, EvidenceRuns* d
   plain::additionEmpty(runs, emp, deferred);
 }
 
-void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ, double scale) {
-  SG_RUN_MASKED(additionOccupiedMasked(runs, occ, scale));
-  plain::additionOccupied(runs, occ, scale);
+void additionOccupied(const EvidenceRuns& runs, std::size_t firstRun, std::size_t endRun,
+                      OccupiedEvidence* occ, double scale) {
+  const RunRange range{firstRun, endRun};
+  SG_RUN_MASKED(additionOccupiedMasked(runs, range, occ, scale));
+  plain::additionOccupied(runs, range, occ, scale);
 }
 
 void bayes(const EvidenceRuns& runs, BayesCell* plane, bool likelihood) {
@@ -695,12 +714,13 @@ SG_RUN_CLONES void dempsterShaferUniform(float occupied, float empty,
 
 namespace sg {
 
-std::int64_t occupiedFixedPoint(const EvidenceRuns& runs) {
+std::int64_t occupiedFixedPoint(const EvidenceRuns& runs, std::size_t firstRun) {
+  const runs::RunRange range{firstRun};
 #ifdef SG_MASKED_RUNS
-  if (runs::masked()) return runs::occupiedTotalMasked(runs);
+  if (runs::masked()) return runs::occupiedTotalMasked(runs, range);
 #endif
   FootprintTotals sum;
-  for (const EvidenceRuns::Run& run : runs.runs) {
+  for (const EvidenceRuns::Run& run : range.of(runs)) {
     const float* const occupied = runs.occupied.data() + run.first;
     for (int k = 0; k < run.count; ++k) sum.add(occupiedFixedPoint(occupied[k]));
   }

@@ -21,9 +21,10 @@ namespace sg::runs {
 // with those values alone and kRunPadding zeros past them.
 void additionEmpty(const EvidenceRuns& runs, EmptyEvidence* emp, EvidenceRuns* deferred = nullptr);
 // Its occupied update with `scale` (1 without normalisation; positive) of every cell with
-// c.occupied > 0, reading the runs' occupied values alone (a reading's deferred runs,
-// AdditionRule::applyRuns).
-void additionOccupied(const EvidenceRuns& runs, OccupiedEvidence* occ, double scale);
+// c.occupied > 0 of runs [firstRun, endRun), reading the runs' occupied values alone (a reading's
+// deferred runs, AdditionRule::applyRuns).
+void additionOccupied(const EvidenceRuns& runs, std::size_t firstRun, std::size_t endRun,
+                      OccupiedEvidence* occ, double scale);
 // Every cell of the runs in `cells` (the grid's plane):
 // BayesRule::apply, with p = 0.5 + (pO − pE)/2 (`likelihood` false) or the model's probability.
 void bayes(const EvidenceRuns& runs, BayesCell* cells, bool likelihood);

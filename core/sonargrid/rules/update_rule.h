@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -61,10 +62,11 @@ inline std::int64_t occupiedFixedPoint(const Footprint& footprint) {
   for (const CellEvidence& c : footprint.cells) sum.add(occupiedFixedPoint(c.occupied));
   return sum.occupied;
 }
-// The same of the cells of some runs (a reading's deferred runs, UpdateRule::applyRuns), whose
-// occupied values alone are read: eight at a time where the run kernels take masked lanes
-// (run_kernels.cpp), the same sum.
-std::int64_t occupiedFixedPoint(const EvidenceRuns& runs);
+// The same of the cells of the runs from `firstRun` on (a reading's deferred runs,
+// UpdateRule::applyRuns, appended to those of the readings before), whose occupied values alone
+// are read: eight at a time where the run kernels take masked lanes (run_kernels.cpp), the same
+// sum.
+std::int64_t occupiedFixedPoint(const EvidenceRuns& runs, std::size_t firstRun = 0);
 
 class UpdateRule {
  public:
@@ -116,16 +118,23 @@ class UpdateRule {
   // as they are), such that applyDeferred(deferred, totals) later finishes the reading and
   // occupiedFixedPoint(deferred) is these cells' share of the totals; the two parts must touch
   // separate state of a cell (or all of it be deferred), since the deferred part of a reading may
-  // be applied after the next readings' first parts. `deferred` may be null for a rule without
+  // be applied after the later readings' first parts (on several threads, after those of the whole
+  // batch: Mapper::integrateBands). `deferred` may be null for a rule without
   // totals. A deferring rule may leave `deferred`'s empty and probability arrays as they were, if
   // its applyDeferred() reads only the occupied values: so a rule overrides both or neither. The
   // default converts the runs to CellEvidence and applies them, or defers them all with their
   // three values.
   virtual void applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const;
-  // Finishes a reading's runs that applyRuns() deferred, given the totals of the whole reading. The
-  // default converts them to CellEvidence and calls applyPart().
-  virtual void applyDeferred(const EvidenceRuns& deferred, const FootprintTotals& totals,
-                             Grid& grid) const;
+  // Finishes a reading's runs that applyRuns() deferred, runs [firstRun, endRun) of `deferred`
+  // (which may hold other readings' before and after them), given the totals of the whole reading.
+  // The default converts them to CellEvidence and calls applyPart().
+  virtual void applyDeferred(const EvidenceRuns& deferred, std::size_t firstRun, std::size_t endRun,
+                             const FootprintTotals& totals, Grid& grid) const;
+  // The same of all of its runs.
+  void applyDeferred(const EvidenceRuns& deferred, const FootprintTotals& totals,
+                     Grid& grid) const {
+    applyDeferred(deferred, 0, deferred.runs.size(), totals, grid);
+  }
 
   virtual double occupancy(const Grid& grid, std::size_t cell) const = 0;  // p(occupied), [0, 1]
   virtual double native(const Grid& grid, std::size_t cell) const = 0;
