@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Builds the core, the CLI and their tests with ThreadSanitizer into build-tsan/ and runs the core
-# and CLI suites under it with SONARGRID_THREADS=4: every parallel path (the mapper's stripes and
+# and CLI suites under it with SONARGRID_THREADS=4: every parallel path (the mapper's bands and
 # pipeline, snapshots, the cone tables, the sweep) then runs on four threads, whatever the runner's
 # CPU count (tests that set their own count, tst_concurrency and tst_mapper's 1/2/3/8-thread rows,
 # still do). Any report fails the job.
@@ -17,8 +17,8 @@ export SONARGRID_THREADS=4
 export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/.ci/tsan.supp"
 ctest --test-dir build-tsan -L "core|cli" -E '^tst_cli_threads$' --output-on-failure -j "$(nproc)"
 # tst_cli_threads runs the CLI 100 times (every pair at three thread counts), over five minutes
-# under TSan. Here: one pair for each way of mapping (stripes, stripes in step, the pipeline),
-# then its other cases whole. The full suite runs in the uninstrumented build (.ci/test.sh).
+# under TSan. Here: one pair for each way of mapping (bands, bands in two passes for totals, the
+# pipeline), then its other cases whole. The full suite runs in the uninstrumented build (.ci/test.sh).
 build-tsan/tests/cli/tst_cli_threads "sameMapAnyThreadCount:hpf × bayes" \
   "sameMapAnyThreadCount:hpf × addition" "sameMapAnyThreadCount:himm × himm" \
   sameResultsOtherCommands badValues

@@ -78,13 +78,9 @@ constexpr std::size_t kDirectChunk = 128;
 constexpr std::size_t kDirectSlots = 8;
 // A snapshot's layers are filled on one more thread per this many cells.
 constexpr std::size_t kSnapshotCellsPerThread = 32768;
-// The height of the stripes of rows the threads share out (integrateStripes).
-constexpr int kStripeRows = 8;
-// Footprint parts whose totals a thread posts at once (integrateStripes, rules with totals): a post
-// is a store and a wake-up check on a cache line the other threads read, so posting every reading
-// kept the threads synchronising on every reading (15 % of hpf × addition's time at 2 threads).
-// Well under kSlots, so that a thread never runs out of ring while its totals wait to be posted.
-constexpr std::size_t kPostBatch = 16;
+// Rows of the grid per thread at the least (integrateBands): a thread with none would read
+// every beam for nothing.
+constexpr int kBandRows = 8;
 
 }  // namespace
 
@@ -309,8 +305,16 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
   // cost more than the second thread saved (himm × himm on the 100k workload, same process,
   // loaded machine: 142–196 ms at 2 threads against 29–49 ms at 1); through the pipeline, the
   // hand-over of each footprint costs more than tracing it.
+  // So does normalising addition with a model that gives no runs, which its threads would have to
+  // keep whole for the totals (integrateBands; no model of the registry is one).
+  EvidenceRuns probeRuns;
+  const bool keepable =
+      !rule_->needsTotals() ||
+      (n > 0 && model_->evidenceRuns(beams[0], grid_.spec(), *tables_, RowWindow{0, 0}, probeRuns));
   const unsigned threads =
-      n < kParallelMinimum || !(model_->rasterisesRows() || direct) ? 1u : parallelThreads();
+      n < kParallelMinimum || !(model_->rasterisesRows() || direct) || !keepable
+          ? 1u
+          : parallelThreads();
   if (direct) return integrateDirect(beams, cancel, threads);
   if (threads == 1) {
     const bool totals = rule_->needsTotals();
@@ -334,13 +338,11 @@ bool Mapper::integrateBeams(const std::vector<Beam>& beams, const std::atomic<bo
     }
     return true;
   }
-  // Stripes of rows per thread, unless an observer must see whole footprints in order: then the
-  // pipeline. No more threads than stripes: a thread without rows would read every beam for
-  // nothing.
+  // Bands of rows per thread, unless an observer must see whole footprints in order: then the
+  // pipeline.
   if (!observer_) {
-    const auto stripes =
-        static_cast<unsigned>((grid_.spec().height + kStripeRows - 1) / kStripeRows);
-    return integrateStripes(beams, cancel, std::max(1u, std::min(threads, stripes)));
+    const auto bands = static_cast<unsigned>(grid_.spec().height / kBandRows);
+    return integrateBands(beams, cancel, std::max(1u, std::min(threads, bands)));
   }
 
   // An observer sees whole footprints in order: computed ahead on the other threads, applied on
@@ -398,192 +400,133 @@ bool Mapper::integrateDirect(const std::vector<Beam>& beams, const std::atomic<b
   return orderedPipeline<DirectCells>(chunks, threads, kDirectSlots, 1, cancel, list, apply);
 }
 
-bool Mapper::integrateStripes(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
-                              unsigned threads) {
-  // Each thread has its own grid rows. It reads every beam but rasterises only its own rows, and
-  // applies them to cells no other thread has: each cell still sees the readings in log order, so
-  // the grid is bit-identical to the serial one, and no footprint is handed from one core to
-  // another (that traffic, 16 bytes a cell, cost the ordered pipeline most of its second core).
-  // - Rules with totals (normalising addition) keep the threads in step, reading by reading, so
-  //   thread k takes every `threads`-th stripe of kStripeRows rows, from stripe k: thin
-  //   interleaved stripes give every thread a like share of nearly every footprint, wherever the
-  //   robot is, and neither waits long for the other's totals.
-  // - Without totals the threads never wait for each other, so each takes one band of
-  //   consecutive rows, the bands of about equal work over the whole batch (row_bands.h). A cone
-  //   inside one band then costs the other threads nothing, where with stripes every thread set up
-  //   nearly every reading (hpf × bayes-recursive on 2 threads: 0.95–0.98 of the wall-clock time
-  //   on the 100k workload and 0.95–0.97 on the office log; docs/performance.md).
+bool Mapper::integrateBands(const std::vector<Beam>& beams, const std::atomic<bool>* cancel,
+                            unsigned threads) {
+  // Each thread has its own band of consecutive grid rows, the bands of about equal work over the
+  // whole batch (row_bands.h). It reads every beam but rasterises only its own rows, and applies
+  // them to cells no other thread has: each cell still sees the readings in log order, so the grid
+  // is bit-identical to the serial one, and no footprint is handed from one core to another (that
+  // traffic, 16 bytes a cell, cost the ordered pipeline most of its second core). A cone inside
+  // one band costs the other threads nothing, where interleaved stripes of rows made every thread
+  // set up nearly every reading (hpf × bayes-recursive on 2 threads: 0.95–0.98 of the wall-clock
+  // time on the 100k workload and 0.95–0.97 on the office log; docs/performance.md).
+  // Rules with totals (normalising addition) take two passes a chunk of readings, so that there
+  // too no thread waits for another reading by reading (below).
   const std::size_t n = beams.size();
   const bool totals = rule_->needsTotals();
   const double reach = model_->reach(ring_.maxRange);  // for any range (the grid's growth too)
-  std::vector<RowWindow> rows(threads);                // thread k's rows
-  if (totals) {
-    for (unsigned k = 0; k < threads; ++k) {
-      rows[k].stripe = kStripeRows;
-      rows[k].period = static_cast<int>(threads);
-      rows[k].phase = static_cast<int>(k);
-    }
-  } else {
-    // Whether no-echo readings write (and so weigh): the model's value half-way out on the axis
-    // of one. A wrong guess would only unbalance the bands, never change a cell.
-    const double maxRange = ring_.maxRange;
-    const bool noEchoWrites =
-        model_->evaluate(maxRange / 2.0, 0.0, Reading::kNoEcho, maxRange).region !=
-        BeamRegion::Outside;
-    rows = balancedBands(estimatedRowWork(beams, grid_.spec(), reach, noEchoWrites), threads);
-  }
-
-  // The threads in step (rules with totals, below).
-  struct alignas(64) Step {
-    // Parts 0 .. posted − 1 have their total in `partial`; kHalted is set when the run stops.
-    std::atomic<std::size_t> posted{0};
-    std::vector<std::int64_t> partial;
-  };
-  std::vector<Step> state;
-
+  // Whether no-echo readings write (and so weigh): the model's value half-way out on the axis of
+  // one. A wrong guess would only unbalance the bands, never change a cell.
+  const double maxRange = ring_.maxRange;
+  const bool noEchoWrites =
+      model_->evaluate(maxRange / 2.0, 0.0, Reading::kNoEcho, maxRange).region !=
+      BeamRegion::Outside;
   std::atomic<bool> stop{false};
   std::atomic<std::size_t> done{n};  // the fewest readings any thread has applied
   auto halt = [&](std::size_t applied) {
     for (std::size_t d = done.load(); applied < d && !done.compare_exchange_weak(d, applied);) {
     }
     stop.store(true);
-    // A thread waiting for another's part wakes on the change of its count, and sees kHalted.
-    for (Step& b : state) {
-      b.posted.fetch_or(kHalted);
-      b.posted.notify_all();
-    }
   };
   auto stopping = [&](std::size_t i) {
     return stop.load(std::memory_order_relaxed) ||
            (cancel && i % kCancelStride == 0 && cancel->load(std::memory_order_relaxed));
   };
   // A thread that fails (or cannot start) halts the others; runParallel rethrows its error here.
-  auto runThreads = [&](unsigned count, auto work) {
+  auto runThreads = [&](auto work) {
     runParallel(
-        count, [&](unsigned k) { work(k); }, [&] { halt(0); });
+        threads, [&](unsigned k) { work(k); }, [&] { halt(0); });
+  };
+  // The rows a beam can write lie within the model's reach (for any range) of its sensor's row, and
+  // a few rows more for the cell the sensor is in and the spans' margins (cone_raster.h): a beam
+  // whose sensor is further than that from a thread's band is passed over before the model sets it
+  // up (its constants, the cone's edges), which the band's rows would then cut to nothing.
+  const GridSpec& spec = grid_.spec();
+  const double reachRows = reach / spec.cellSize + 4.0;
+  auto farFrom = [&](const RowWindow& band, const Beam& beam) {
+    const double row = (beam.sensor.y() - spec.origin.y()) / spec.cellSize;
+    // (a NaN row goes on, as on one thread)
+    return row < band.begin - reachRows || row > band.end + reachRows;
   };
 
   if (!totals) {
-    // The rows a beam can write lie within the model's reach (for any range) of its sensor's row,
-    // and a few rows more for the cell the sensor is in and the spans' margins (cone_raster.h):
-    // a beam whose sensor is further than that from a thread's band is passed over before the
-    // model sets it up (its constants, the cone's edges), which the band's rows would then cut
-    // to nothing.
-    const GridSpec& spec = grid_.spec();
-    const double reachRows = reach / spec.cellSize + 4.0;
-    runThreads(threads, [&](unsigned k) {
+    const std::vector<RowWindow> rows =
+        balancedBands(estimatedRowWork(beams, spec, reach, noEchoWrites), threads);
+    runThreads([&](unsigned k) {
       Footprint fp;
       EvidenceRuns runs;
-      const double below = rows[k].begin - reachRows, above = rows[k].end + reachRows;
       for (std::size_t i = 0; i < n; ++i) {
         if (stopping(i)) return halt(i);
-        const double row = (beams[i].sensor.y() - spec.origin.y()) / spec.cellSize;
-        if (row < below || row > above) continue;  // (a NaN row goes on, as on one thread)
+        if (farFrom(rows[k], beams[i])) continue;
         runs.clear();
-        if (model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], runs)) {
+        if (model_->evidenceRuns(beams[i], spec, *tables_, rows[k], runs)) {
           applyRuns(runs, nullptr);
           continue;
         }
         fp.clear();
-        model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], fp);
+        model_->footprintRows(beams[i], spec, *tables_, rows[k], fp);
         rule_->apply(fp, grid_);
         markObserved(fp);
       }
     });
   } else {
-    // In step: thread k computes its part of footprint i, posts the part's total (kPostBatch at a
-    // time), and keeps the part in a ring of kSlots until every thread has posted i; then it
-    // applies it with the sum. Only the totals cross between cores. (A thread kSlots ahead waits;
-    // two threads cannot both wait, as each would have to be kSlots ahead of the other.)
-    state = std::vector<Step>(rows.size());
-    for (Step& b : state) b.partial.assign(n, 0);
-    enum class Part { Ready, NotYet, Halted };
-    auto posted = [&](std::size_t i) {
-      for (const Step& b : state) {
-        const std::size_t p = b.posted.load(std::memory_order_acquire);
-        if (p & kHalted) return Part::Halted;
-        if (p <= i) return Part::NotYet;
-      }
-      return Part::Ready;
+    // Normalising addition needs each reading's total over its whole occupied arc, which may lie
+    // in several bands. So, a chunk of kTotalsChunk readings at a time, each thread first applies
+    // to its band what does not wait for the totals (the empty evidence; UpdateRule::applyRuns)
+    // and keeps what does (the arc's runs) with its band's share of each total; then, once every
+    // thread has done so, it applies the kept runs in log order with the whole totals. The two
+    // parts touch separate state of a cell, and a chunk is finished before the next begins, so
+    // each cell still sees each part's readings in log order; the bands may so be drawn afresh
+    // for each chunk, about equal for its readings. No thread waits for another reading by reading:
+    // stripes of rows with the threads in step, reading by reading, had hpf × addition take as long
+    // on 2 threads as on 1 on one machine (docs/performance.md).
+    // A thread's store, on a cache line of its own: its vectors' ends move as it fills (side by
+    // side, the two threads' stores made each take 1.5× as long a cell as one thread).
+    struct alignas(64) Kept {
+      EvidenceRuns runs;                 // the arc's runs of the chunk's readings, in log order
+      std::vector<std::uint32_t> ends;   // one past reading i's last run in `runs`
+      std::vector<std::int64_t> shares;  // reading i's share of its total (fixed point)
     };
-    // Waits until every thread has posted part i; false when the run stops.
-    auto waitPosted = [&](std::size_t i) {
-      for (Step& b : state) {
-        for (std::size_t p = b.posted.load(std::memory_order_acquire); p <= i;
-             p = b.posted.load(std::memory_order_acquire)) {
-          waitForChange(b.posted, p);
+    std::vector<Kept> kept(threads);
+    for (std::size_t begin = 0; begin < n && !stop.load(); begin += kTotalsChunk) {
+      const std::size_t count = std::min(kTotalsChunk, n - begin);
+      const std::span<const Beam> chunk(beams.data() + begin, count);
+      const std::vector<RowWindow> rows =
+          balancedBands(estimatedRowWork(chunk, spec, reach, noEchoWrites), threads);
+      runThreads([&](unsigned k) {
+        Kept& mine = kept[k];
+        mine.runs.clear();
+        mine.ends.resize(count);
+        mine.shares.resize(count);
+        EvidenceRuns runs;
+        for (std::size_t j = 0; j < count; ++j) {
+          if (stopping(begin + j)) return halt(begin);
+          const auto from = static_cast<std::uint32_t>(mine.runs.runs.size());
+          mine.shares[j] = 0;
+          if (!farFrom(rows[k], chunk[j])) {
+            runs.clear();
+            // (integrateBeams() maps on one thread with a model that gives no runs.)
+            model_->evidenceRuns(chunk[j], spec, *tables_, rows[k], runs);
+            applyRuns(runs, &mine.runs);
+            mine.shares[j] = occupiedFixedPoint(mine.runs, from);
+          }
+          mine.ends[j] = static_cast<std::uint32_t>(mine.runs.runs.size());
         }
-      }
-      return posted(i) == Part::Ready;
-    };
-    runThreads(threads, [&](unsigned k) {
-      Step& mine = state[k];
-      // A part waiting for the totals: the runs the rule deferred, when the model hands its runs
-      // straight to the rule (their cells are marked already), else the whole part from
-      // footprintRows().
-      struct Waiting {
-        bool runs = false;
-        EvidenceRuns deferred;
-        Footprint part;
-      };
-      std::vector<Waiting> ring(kSlots);
-      EvidenceRuns runs;
-      std::size_t applied = 0;
-      std::size_t computed = 0, published = 0;
-      auto applyNext = [&] {
-        FootprintTotals sum;
-        for (const Step& b : state) sum.add(b.partial[applied]);
-        const Waiting& w = ring[applied % kSlots];
-        if (w.runs) {
-          rule_->applyDeferred(w.deferred, sum, grid_);
-        } else {
-          rule_->applyPart(w.part, sum, grid_);
-          markObserved(w.part);
+      });
+      if (stop.load()) break;
+      runThreads([&](unsigned k) {
+        const Kept& mine = kept[k];
+        std::uint32_t from = 0;
+        for (std::size_t j = 0; j < count; ++j) {
+          if (stopping(begin + j)) return halt(begin + j);
+          if (mine.ends[j] == from) continue;  // nothing of it kept in this band
+          FootprintTotals sum;
+          for (const Kept& band : kept) sum.add(band.shares[j]);
+          rule_->applyDeferred(mine.runs, from, mine.ends[j], sum, grid_);
+          from = mine.ends[j];
         }
-        ++applied;
-      };
-      // Posts the totals computed since the last post: in batches of kPostBatch, and always before
-      // this thread waits for another (so two threads never wait for each other's unposted parts).
-      auto publish = [&] {
-        if (computed == published) return;
-        mine.posted.fetch_add(computed - published, std::memory_order_release);  // keeps kHalted
-        mine.posted.notify_all();
-        published = computed;
-      };
-      for (std::size_t i = 0; i < n; ++i) {
-        if (stopping(i)) return halt(applied);
-        while (i >= applied + kSlots) {
-          publish();
-          if (!waitPosted(applied)) return halt(applied);
-          applyNext();
-        }
-        Waiting& w = ring[i % kSlots];
-        runs.clear();
-        w.runs = model_->evidenceRuns(beams[i], grid_.spec(), *tables_, rows[k], runs);
-        if (w.runs) {
-          w.deferred.clear();
-          applyRuns(runs, &w.deferred);
-          mine.partial[i] = occupiedFixedPoint(w.deferred);
-        } else {
-          w.part.clear();
-          model_->footprintRows(beams[i], grid_.spec(), *tables_, rows[k], w.part);
-          mine.partial[i] = occupiedFixedPoint(w.part);
-        }
-        ++computed;
-        if (computed - published < kPostBatch) continue;
-        publish();
-        // Apply what every thread has posted, without waiting.
-        for (Part p = posted(applied); applied <= i && p != Part::NotYet; p = posted(applied)) {
-          if (p == Part::Halted) return halt(applied);
-          applyNext();
-        }
-      }
-      publish();
-      while (applied < n) {
-        if (!waitPosted(applied)) return halt(applied);
-        applyNext();
-      }
-    });
+      });
+    }
   }
   readings_ += done;
   return done == n;

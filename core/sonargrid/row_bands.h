@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// How the mapper shares a batch's grid rows between its threads when each thread can work on its
-// own without waiting for the others (Mapper::integrateStripes, rules without totals): one
+// How the mapper shares a batch's grid rows between its threads, so that each thread works on its
+// own without waiting for the others (Mapper::integrateBands; with totals, for each chunk): one
 // contiguous band of rows per thread, the bands of about equal work. A cone that lies inside one
 // band costs only that band's thread its per-reading setup (the model's constants, the cone's
 // edges and rows), where interleaved stripes made every thread pay it for nearly every reading.

@@ -121,7 +121,7 @@ void TstCliThreads::sameMapAnyThreadCount() {
 }
 
 void TstCliThreads::sameResultsOtherCommands_data() {
-  // goodness feeds VSDNS every footprint: the mapper's ordered pipeline, not its stripes; score
+  // goodness feeds VSDNS every footprint: the mapper's ordered pipeline, not its bands; score
   // maps as map does. Their whole --json output must be the same bytes.
   QTest::addColumn<QStringList>("args");
   const QString reference = QStringLiteral(SONARGRID_DATASETS "/room/room.json");

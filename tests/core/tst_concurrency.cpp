@@ -71,6 +71,7 @@ class Watchdog {
 struct Fault {
   std::thread::id caller = std::this_thread::get_id();
   bool onCaller = false;  // the test's own thread rather than a worker
+  bool runs = true;       // the model hands its rows over as runs (as every cone model does)
   int after = 200;
   std::atomic<bool> armed{true};
   std::atomic<int> calls{0};
@@ -116,6 +117,12 @@ class FaultyModel final : public SensorModel {
     real_->footprintRows(beam, grid, tables, window, out);
   }
   bool rasterisesRows() const override { return real_->rasterisesRows(); }
+  bool evidenceRuns(const Beam& beam, const GridSpec& grid, const BeamTables& tables,
+                    RowWindow window, EvidenceRuns& out) const override {
+    if (!fault_.runs) return false;
+    fault_.maybeThrow("model");
+    return real_->evidenceRuns(beam, grid, tables, window, out);
+  }
 
  private:
   std::unique_ptr<SensorModel> real_;
@@ -559,8 +566,10 @@ void TstConcurrency::nestedRunsUseOneThread() {
   QCOMPARE(parallelThreads(), 3u);
 }
 
-// Every parallel path, every kind of failure. Paths: the mapper's stripes of rows (hpf × bayes),
-// its stripes in step with footprint totals (hpf × addition, which normalises), its ordered
+// Every parallel path, every kind of failure. Paths: the mapper's bands of rows (hpf × bayes), and
+// with a model that gives no runs (footprints of the band's rows), its bands in two passes for
+// footprint totals (hpf × addition, which normalises; with a model that gives no runs, on the
+// caller's thread alone), its ordered
 // pipeline (with an observer; and himm × himm, whose model does not rasterise rows), the
 // snapshot's layers on a grid of 200 000 cells, the beam tables' fill, and the parameter sweep.
 // Failures: the model or the rule throws on a worker after 200 calls there (the rule of the
@@ -575,8 +584,11 @@ void TstConcurrency::failureReachesTheCaller_data() {
     std::vector<const char*> failures;
   };
   const std::vector<Row> rows{
-      {"stripes", {"model on worker", "rule on worker", "start 1", "start 2"}},
+      {"bands", {"model on worker", "rule on worker", "start 1", "start 2"}},
+      {"bands without runs", {"model on worker", "rule on worker"}},
       {"totals", {"model on worker", "rule on worker", "start 1", "start 2"}},
+      // Normalising addition with a model that gives no runs is mapped on the calling thread.
+      {"totals without runs", {"model on caller", "rule on caller"}},
       {"pipeline observer", {"model on worker", "rule on caller", "start 1", "start 2"}},
       // HIMM's axis model does not rasterise by rows: the mapper maps it on the calling thread
       // (its beams are still placed on several).
@@ -602,7 +614,7 @@ MapperSettings settingsOf(const QString& path) {
   MapperSettings s;
   s.model = "hpf";
   s.rule = "bayes";
-  if (path == "totals") s.rule = "addition";
+  if (path.startsWith("totals")) s.rule = "addition";
   if (path == "himm on one thread") s.model = s.rule = "himm";
   return s;
 }
@@ -626,6 +638,7 @@ void TstConcurrency::failureReachesTheCaller() {
   const ScopedThreadCount policy(threads);
   Fault fault;
   fault.onCaller = failure.endsWith("on caller");
+  fault.runs = !path.endsWith("without runs");
   // A snapshot calls writeLevels once per thread: its first call on a worker fails.
   fault.after = path == "snapshot" ? 0 : 200;
   // Models and rules are wrapped when they are made, so before the mapper is built; a thread
@@ -703,7 +716,8 @@ void TstConcurrency::failureReachesTheCaller() {
 
 void TstConcurrency::sameGridAfterAFailure_data() {
   QTest::addColumn<QString>("path");
-  for (const char* path : {"stripes", "totals", "pipeline observer", "himm on one thread"})
+  for (const char* path : {"bands", "bands without runs", "totals", "totals without runs",
+                           "pipeline observer", "himm on one thread"})
     QTest::newRow(path) << path;
 }
 
@@ -715,7 +729,9 @@ void TstConcurrency::sameGridAfterAFailure() {
   const Dataset& d = room();
   const GridSpec grid = d.fittingGrid(PoseSource::Odometry, 0.05);
   Fault fault;
-  fault.onCaller = path == "himm on one thread";  // the only thread it maps on
+  // The only thread they map on.
+  fault.onCaller = path == "himm on one thread" || path == "totals without runs";
+  fault.runs = !path.endsWith("without runs");
   CountingObserver observer;
   const Watchdog watchdog(QTest::currentDataTag());
   {

@@ -59,16 +59,17 @@ struct Uniform {
   }
 };
 
-// 270 scans of the 16-sonar Pioneer ring, 4320 readings, above the mapper's 4096 below which it
-// keeps to one thread: scan k at poseOf(k, uniform), each range drawn from [0.05, 5.6) m, and a
-// no-echo at or beyond the maximum range and where noEcho(k, sonar) says.
+// `scans` scans of the 16-sonar Pioneer ring (270 by default: 4320 readings, above the mapper's
+// 4096 below which it keeps to one thread): scan k at poseOf(k, uniform), each range drawn from
+// [0.05, 5.6) m, and a no-echo at or beyond the maximum range and where noEcho(k, sonar) says.
 template <class PoseOf, class NoEcho>
-Dataset ringLog(const char* name, std::uint64_t seed, PoseOf poseOf, NoEcho noEcho) {
+Dataset ringLog(const char* name, std::uint64_t seed, PoseOf poseOf, NoEcho noEcho,
+                int scans = 270) {
   Dataset d;
   d.name = name;
   d.ring = SonarRing::pioneer3dx();
   Uniform uniform{seed};
-  for (int k = 0; k < 270; ++k) {
+  for (int k = 0; k < scans; ++k) {
     Scan s;
     s.time = 0.1 * k;
     s.odometry = poseOf(k, uniform);
@@ -116,7 +117,7 @@ const Dataset& workload() {
 
 // A 2 × 30 m grid at 5 cm (600 rows), six times the sonar's reach: on several threads each
 // thread's band of rows (row_bands.h) is far from most beams, which it passes over before the
-// model sets them up (Mapper::integrateStripes).
+// model sets them up (Mapper::integrateBands).
 GridSpec tallGrid() {
   GridSpec g;
   g.origin = Position(-1.0, 0.0);
@@ -205,6 +206,8 @@ class TstFusedRuns : public QObject {
   void occupiedTotalAtEveryWidth();
   void tallGridThreadsPassOverFarBeams_data();
   void tallGridThreadsPassOverFarBeams();
+  void additionInChunksKeepsTheBits_data();
+  void additionInChunksKeepsTheBits();
 };
 
 void TstFusedRuns::runsGiveTheFootprintPathsBits_data() {
@@ -673,10 +676,10 @@ void TstFusedRuns::tallGridThreadsPassOverFarBeams_data() {
   QTest::addColumn<QString>("model");
   QTest::addColumn<QString>("rule");
   QTest::addColumn<bool>("noEchoFree");
-  // Rules without totals (their threads take bands); with no-echo updates on too, whose cones
-  // reach the maximum range, as far as any beam of the model can.
+  // Rules without totals and normalising addition, whose threads both take bands; with no-echo
+  // updates on too, whose cones reach the maximum range, as far as any beam of the model can.
   for (const char* m : {"hpf", "konolige", "murphy", "parameterized"}) {
-    for (const char* r : {"bayes", "log", "dempster-shafer"}) {
+    for (const char* r : {"bayes", "log", "dempster-shafer", "addition"}) {
       for (const bool noEcho : {false, true}) {
         QTest::addRow("%s/%s%s", m, r, noEcho ? " no_echo=1" : "")
             << QString(m) << QString(r) << noEcho;
@@ -701,6 +704,57 @@ void TstFusedRuns::tallGridThreadsPassOverFarBeams() {
   for (const unsigned threads : {2u, 3u}) {
     ScopedThreadCount count(threads);
     Mapper runs(d.ring, tallGrid(), settings);
+    QVERIFY(runs.mapDataset(d));
+    QCOMPARE(runs.readingsIntegrated(), d.readingCount());
+    QVERIFY2(
+        sameGrid(settings.rule, oracle.storage(), runs.storage()),
+        qPrintable(QString("%1 threads: the grid differs from the footprint path's").arg(threads)));
+  }
+}
+
+void TstFusedRuns::additionInChunksKeepsTheBits_data() {
+  QTest::addColumn<QString>("model");
+  QTest::addColumn<bool>("noEchoFree");
+  for (const char* m : {"hpf", "konolige", "murphy", "parameterized"}) {
+    for (const bool noEcho : {false, true})
+      QTest::addRow("%s%s", m, noEcho ? " no_echo=1" : "") << QString(m) << noEcho;
+  }
+}
+
+void TstFusedRuns::additionInChunksKeepsTheBits() {
+  // Normalising addition on several threads maps kTotalsChunk readings at a time, each chunk with
+  // bands of its own (Mapper::integrateBands). Two chunks and a part of a third: the first in the
+  // grid's lower half, the second anywhere, the rest in the upper half, so that the chunks' bands
+  // differ and many cells are written in each of them.
+  QFETCH(QString, model);
+  QFETCH(bool, noEchoFree);
+  const int perChunk = static_cast<int>(kTotalsChunk / 16);  // scans of the 16-sonar ring
+  const GridSpec g = smallGrid();
+  const double x0 = g.origin.x() + 0.3, x1 = g.origin.x() + g.widthMetres() - 0.3;
+  const double y0 = g.origin.y() + 0.3, y1 = g.origin.y() + g.heightMetres() - 0.3;
+  const double mid = 0.5 * (y0 + y1);
+  static const Dataset d = ringLog(
+      "chunks", 4242,
+      [&](int k, Uniform& uniform) {
+        const double lo = k < perChunk || k >= 2 * perChunk ? mid : y0;
+        const double hi = k < 2 * perChunk ? mid : y1;
+        const double x = uniform(x0, x1), y = k < perChunk ? uniform(y0, mid) : uniform(lo, hi);
+        return Pose2D(x, y, uniform(-3.14, 3.14));
+      },
+      [](int k, int sonar) { return (k * 16 + sonar) % 7 == 0; }, 2 * perChunk + 40);
+  QVERIFY(d.readingCount() > 2 * kTotalsChunk);
+  const MapperSettings settings = rowSettings(model.toStdString(), "addition", noEchoFree);
+  QCOMPARE(settings.parameters.get("normalise"), 1.0);  // the rule's default: totals
+  Mapper oracle(d.ring, g, settings);
+  NullObserver observer;
+  oracle.setObserver(&observer);  // the footprint path, one reading at a time
+  {
+    ScopedThreadCount one(1);
+    QVERIFY(oracle.mapDataset(d));
+  }
+  for (const unsigned threads : {2u, 3u}) {
+    ScopedThreadCount count(threads);
+    Mapper runs(d.ring, g, settings);
     QVERIFY(runs.mapDataset(d));
     QCOMPARE(runs.readingsIntegrated(), d.readingCount());
     QVERIFY2(

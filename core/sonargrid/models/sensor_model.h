@@ -71,7 +71,7 @@ class SensorModel {
                              RowWindow window, Footprint& out) const;
   // Whether footprintRows() rasterises only the window's rows, so that it costs about the window's
   // share of footprint() (the cone models; the default above computes the whole footprint and
-  // filters it). The mapper splits a batch between threads by stripes of rows for such a model.
+  // filters it). The mapper splits a batch between threads by bands of rows for such a model.
   virtual bool rasterisesRows() const { return false; }
   // For a model whose every reading gives its cells one of two values (HIMM's axis), the batch
   // path without footprints: listDirect() appends the cells of beams[0, count) to `out`

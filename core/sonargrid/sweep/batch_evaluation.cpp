@@ -306,7 +306,7 @@ using batch::Shape;
 // Rows of the grid a batch works through at a time: their cells' state for the batch (some
 // 130 bytes per cell for VSDNS) stays in a core's own cache while every reading that reaches them
 // is applied. Each cell still sees the readings in log order, so the order of the rows changes
-// nothing of any result (the mapper's threads split a map into stripes of rows the same way).
+// nothing of any result (the mapper's threads split a map into bands of rows the same way).
 constexpr int kBandRows = 16;
 
 // Each lane's cone for one reading, and the widest of them.
