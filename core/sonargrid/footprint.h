@@ -103,43 +103,20 @@ struct EvidenceRuns {
   }
 };
 
-// The grid rows a footprint is restricted to: those of [begin, end) in stripes of `stripe` rows,
-// every `period`-th stripe starting with stripe number `phase` (all rows by default). The mapper
-// gives each of its threads every n-th stripe of the grid (mapper.cpp).
+// The grid rows a footprint is restricted to: those of [begin, end) (all rows by default). The
+// mapper gives each of its threads one band of consecutive rows (mapper.cpp, row_bands.h).
 struct RowWindow {
   int begin = 0;
   int end = std::numeric_limits<int>::max() / 2;  // room for arithmetic on it
-  int stripe = 1;
-  int period = 1;
-  int phase = 0;
-  bool contains(int row) const {
-    return row >= begin && row < end && (period == 1 || (row / stripe) % period == phase);
-  }
-  // f(row) for every row of [lo, hi] (rows >= 0) that contains() accepts, in increasing order: a
-  // stripe at a time, without contains()'s division per row (at two threads the cone models'
-  // rasteriser spent a tenth of its time dividing row numbers). f is called from one place, so
-  // that the compiler inlines it, and forEachRow is always inlined, so that it is built for the
-  // caller's target (the cone rasteriser's AVX2 function, cone_model.h).
+  bool contains(int row) const { return row >= begin && row < end; }
+  // f(row) for every row of [lo, hi] (rows >= 0) that contains() accepts, in increasing order. f is
+  // called from one place, so that the compiler inlines it, and forEachRow is always inlined, so
+  // that it is built for the caller's target (the cone rasteriser's AVX2 function, cone_model.h).
   template <class F>
   [[gnu::always_inline]] void forEachRow(int lo, int hi, F&& f) const {
     lo = std::max({lo, begin, 0});
     hi = std::min(hi, end - 1);
-    if (lo > hi) return;
-    int s = 0;  // the stripe being listed (period > 1)
-    int row = lo, last = hi;
-    if (period > 1) {
-      s = lo / stripe;  // the stripe of lo, then the first of ours from it
-      s += ((phase - s % period) % period + period) % period;
-      row = std::max(lo, s * stripe);
-      last = std::min(hi, s * stripe + stripe - 1);
-    }
-    while (row <= hi) {
-      for (; row <= last; ++row) f(row);
-      if (period == 1) break;
-      s += period;
-      row = s * stripe;
-      last = std::min(hi, row + stripe - 1);
-    }
+    for (int row = lo; row <= hi; ++row) f(row);
   }
 };
 

@@ -99,9 +99,9 @@ class TstMapper : public QObject {
   void parallelBatchEqualsIncremental();
   void parallelIsRepeatable();
   void cancelMidRun();
-  void cancelStripes();
-  void stripesForEveryRuleKind_data();
-  void stripesForEveryRuleKind();
+  void cancelBands();
+  void bandsForEveryRuleKind_data();
+  void bandsForEveryRuleKind();
   void untilIsAPrefix();
   void deterministic();
   void poseSource();
@@ -291,8 +291,8 @@ void TstMapper::cancelMidRun() {
   QVERIFY(sameLayers(m.snapshot(), fresh.snapshot()));
 }
 
-void TstMapper::cancelStripes() {
-  // Without an observer a large log is mapped in stripes of rows, one set per thread (HIMM's
+void TstMapper::cancelBands() {
+  // Without an observer a large log is mapped in bands of rows, one per thread (HIMM's
   // axis: listed on any thread, folded in in order). Cancelled before it starts: nothing is
   // integrated. Cancelled from another thread while it runs (the flag may come after the end on a
   // fast machine): either way the same mapper then maps the whole log exactly as a fresh one.
@@ -326,11 +326,11 @@ void TstMapper::cancelStripes() {
   }
 }
 
-void TstMapper::stripesForEveryRuleKind_data() {
+void TstMapper::bandsForEveryRuleKind_data() {
   // The four ways a large log is mapped on several threads, each bit-identical to one thread
-  // scan by scan, at any thread count (the policy's, concurrency.h): stripes of rows (Bayes),
-  // stripes in step sharing each footprint's total (addition with normalisation, which scales a
-  // footprint by its sum), HIMM's axis cells listed on any thread and folded in in order
+  // scan by scan, at any thread count (the policy's, concurrency.h): bands of rows (Bayes), bands
+  // in two passes a chunk sharing each footprint's total (addition with normalisation, which
+  // scales a footprint by its sum), HIMM's axis cells listed on any thread and folded in in order
   // (Mapper::integrateDirect; with its own rule and a probabilistic one), and, with an observer,
   // the ordered pipeline of footprints. 3 threads do not divide the rows evenly; 8 are more than
   // this machine may have.
@@ -359,7 +359,7 @@ void TstMapper::stripesForEveryRuleKind_data() {
   }
 }
 
-void TstMapper::stripesForEveryRuleKind() {
+void TstMapper::bandsForEveryRuleKind() {
   QFETCH(QString, model);
   QFETCH(QString, rule);
   QFETCH(double, normalise);
