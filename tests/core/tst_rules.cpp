@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "sonargrid/models/lanes.h"
+#include "sonargrid/registry_hooks.h"
 #include "sonargrid/rules/rule_classes.h"
 #include "sonargrid/rules/update_rule.h"
 
@@ -80,6 +82,7 @@ class TstRules : public QObject {
   void dempsterShafer();
   void dempsterShaferCells();
   void dempsterShaferKeepsSmallMasses();
+  void dempsterShaferFloorsTinyMasses();
   void unseenCellsAreUnknown();
 };
 
@@ -311,6 +314,63 @@ void TstRules::dempsterShaferKeepsSmallMasses() {
   QVERIFY(!r->filled(0));
   NEAR(r->native(0), -0.7932513);
   NEAR(r->occupancy(0), 0.1033744);
+}
+
+void TstRules::dempsterShaferFloorsTinyMasses() {
+  // Empty readings of 0.5 on a cell nobody has seen, by hand: the first gives m(emp) = m(unk) =
+  // 0.5 (a tie, m(unk) left out), the second m(emp) = 0.75 and m(unk) = 0.25, now stored as
+  // b = −0.25, and each after it halves m(unk) exactly (s = (1 − 0.5) / (1 − 0 · 0.5)): after n
+  // readings b = −2^-n. After the 100th b = −2^-100 = −DempsterShaferCell::kTiny, and there it
+  // stays: the 101st would make it −2^-101, and the 300th −2^-300 (0 in a float, where no
+  // evidence could turn the cell again). Occupied readings of 0.5 then turn it (m(occ) > m(emp)):
+  // m(emp) is 1 in a float, so each doubles m(occ) and adds 2^-100 to it, (2^n − 1) 2^-100 after
+  // the nth, until m(occ) nears 2^-24; each operation rounded to a float as the rule does (worked
+  // in a script), m(occ) = 0.5 against m(emp) = 0.49999997 at the 100th. (In exact arithmetic
+  // from m(unk) = 2^-100, where m(unk) then shrinks too, it is the 101st: 2/3 against 1/3.)
+  // Through apply(), and through the run kernels in every lane width the CPU has
+  // (11 cells: a group and a short tail), which must give the same bits.
+  const auto bitsOf = [](float v) { return std::bit_cast<std::uint32_t>(v); };
+  const auto check = [&](auto applyEmpty, auto applyOccupied, const DempsterShaferCell& cell,
+                         auto filled) {
+    for (int k = 1; k <= 300; ++k) {
+      applyEmpty();
+      if (k == 99) QCOMPARE(bitsOf(cell.b), bitsOf(-0x1p-99f));
+      if (k >= 100) QCOMPARE(bitsOf(cell.b), bitsOf(-0x1p-100f));
+    }
+    QCOMPARE(bitsOf(cell.a), bitsOf(0.0f));
+    for (int k = 1; k < 100; ++k) {
+      applyOccupied();
+      QVERIFY(!filled());
+    }
+    applyOccupied();
+    QVERIFY(filled());
+  };
+  auto r = rule("dempster-shafer", {}, 11);
+  check([&] { r->apply(fp({empty(0, 0.5)})); }, [&] { r->apply(fp({occupied(0, 0.5)})); },
+        r->grid.cells<DempsterShaferCell>(0)[0], [&] { return r->filled(0); });
+
+  EvidenceRuns emptyRuns, occupiedRuns;
+  for (EvidenceRuns* runs : {&emptyRuns, &occupiedRuns}) {
+    const bool isEmpty = runs == &emptyRuns;
+    runs->runs.push_back({0, 11, 0});
+    runs->empty.assign(11 + kRunPadding, isEmpty ? 0.5f : 0.0f);
+    runs->occupied.assign(11 + kRunPadding, isEmpty ? 0.0f : 0.5f);
+    runs->probability.assign(11 + kRunPadding, isEmpty ? 0.25f : 0.75f);
+  }
+  for (const ConeLanes lanes : {ConeLanes::Avx512, ConeLanes::Avx2, ConeLanes::Four}) {
+    const ConeLanes previous = testing::limitConeLanes(lanes);
+    auto v = rule("dempster-shafer", {}, 11);
+    check([&] { v->rule->applyRuns(emptyRuns, v->grid, nullptr); },
+          [&] { v->rule->applyRuns(occupiedRuns, v->grid, nullptr); },
+          v->grid.cells<DempsterShaferCell>(0)[10], [&] { return v->filled(10); });
+    testing::limitConeLanes(previous);
+    for (int j = 0; j < 10; ++j) {
+      const DempsterShaferCell& c = v->grid.cells<DempsterShaferCell>(0)[j];
+      const DempsterShaferCell& last = v->grid.cells<DempsterShaferCell>(0)[10];
+      QCOMPARE(bitsOf(c.a), bitsOf(last.a));
+      QCOMPARE(bitsOf(c.b), bitsOf(last.b));
+    }
+  }
 }
 
 void TstRules::unseenCellsAreUnknown() {

@@ -96,7 +96,7 @@ inline constexpr double kProbabilityFloor = 1e-6;
     const float inv = 1.0f / denominator;
     const float s = (1.0f - x) * inv;
     if (std::signbit(occupiedKind ? cell.a : cell.b)) {
-      cell = {cell.a * s, cell.b * s};
+      cell = {DempsterShaferCell::floored(cell.a * s), DempsterShaferCell::floored(cell.b * s)};
       return;
     }
     const float grown = (grow + m.unk * x) * inv, shrunk = shrink * s;

@@ -13,6 +13,10 @@
 #define SG_INLINE_LAMBDA
 #endif
 
+#include <bit>
+
+#include "sonargrid/rules/rule_classes.h"
+
 namespace sg::runs {
 
 // DempsterShaferCell::masses() and ::of() per lane, on four or eight cells' a and b (V: Floats4 or
@@ -36,14 +40,23 @@ template <class V>
 [[gnu::always_inline]] inline V magnitude(V v) {
   return reinterpret_cast<V>(reinterpret_cast<IntsOf<V>>(v) & 0x7fffffff);
 }
+// DempsterShaferCell::floored() per lane: a magnitude other than 0 below kTiny becomes kTiny of
+// its sign.
+template <class V>
+[[gnu::always_inline]] inline V floored(V v) {
+  const IntsOf<V> sign = reinterpret_cast<IntsOf<V>>(v) & int(0x80000000u);
+  const V tiny = reinterpret_cast<V>(sign | std::bit_cast<int>(DempsterShaferCell::kTiny));
+  const V m = magnitude(v);
+  return (m < DempsterShaferCell::kTiny) & (m != 0.0f) ? tiny : v;
+}
 template <class V>
 [[gnu::always_inline]] inline void cellsOf(const Masses<V>& m, V& a, V& b) {
   const IntsOf<V> unkLeftOut = (m.unk >= m.occ) & (m.unk >= m.emp);
   const IntsOf<V> occLeftOut = ~unkLeftOut & (m.occ >= m.emp);
   const IntsOf<V> empLeftOut = ~(unkLeftOut | occLeftOut);
-  const V unk = -magnitude(m.unk);
-  a = occLeftOut ? unk : magnitude(m.occ);
-  b = empLeftOut ? unk : magnitude(m.emp);
+  const V unk = floored(-magnitude(m.unk));
+  a = occLeftOut ? unk : floored(magnitude(m.occ));
+  b = empLeftOut ? unk : floored(magnitude(m.emp));
 }
 // Bit j set where lane j's sign bit is (movmskps, SSE: in every clone; eight lanes as two fours).
 [[gnu::always_inline]] inline int signBits(Floats4 v) {
@@ -77,8 +90,8 @@ template <class V, class Pick>
     const V denominator = 1.0f - pick(b, a) * x;
     const V s = (1.0f - x) * (1.0f / denominator);
     const I keep = denominator <= 0.0f;  // total conflict
-    a = keep ? a : a * s;
-    b = keep ? b : b * s;
+    a = keep ? a : floored(a * s);
+    b = keep ? b : floored(b * s);
     return;
   }
   const Masses<V> m = masses(a, b);
@@ -93,8 +106,8 @@ template <class V, class Pick>
   cellsOf<V>({pick(grown, shrunk), pick(shrunk, grown), m.unk * s}, newA, newB);
   const I scaled = reinterpret_cast<I>(grownCell) < 0;
   const I keep = (denominator <= 0.0f) | leave;
-  a = keep ? a : (scaled ? a * s : newA);
-  b = keep ? b : (scaled ? b * s : newB);
+  a = keep ? a : (scaled ? floored(a * s) : newA);
+  b = keep ? b : (scaled ? floored(b * s) : newB);
 }
 
 // oneKindLanes() for the model's evidence per lane: lanes with both kinds (which no model gives)

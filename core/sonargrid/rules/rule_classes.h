@@ -188,10 +188,21 @@ struct DempsterShaferCell {
     const T occ = a, emp = b;
     return {occ, emp, T(1) - occ - emp};
   }
+  // The least magnitude of a stored float other than 0: a smaller one is stored as kTiny of its
+  // sign. The repeated scaling of a cell's two small masses would otherwise take them into the
+  // denormal range, where every multiplication by them is many times slower on some CPUs, and then
+  // to 0, where the largest mass is exactly 1 and no evidence can ever turn the cell
+  // (docs/models.md, "Single-precision cells"). A product of kTiny by a scale of at least 2^-26
+  // (any evidence below 1 − 2^-24, a float's last step below 1) stays normal.
+  static constexpr float kTiny = 0x1p-100f;
+  static float floored(float v) {
+    return v != 0.0f && std::fabs(v) < kTiny ? std::copysign(kTiny, v) : v;
+  }
   // Leaves out the largest mass (m(unk) on a tie, then m(occ)); the sign bits are set exactly where
-  // masses() looks for them, whatever the signs of the masses given.
+  // masses() looks for them, whatever the signs of the masses given. Both floats floored().
   static DempsterShaferCell of(const DempsterShaferMasses& m) {
-    const float occ = std::fabs(m.occ), emp = std::fabs(m.emp), unk = -std::fabs(m.unk);
+    const float occ = floored(std::fabs(m.occ)), emp = floored(std::fabs(m.emp));
+    const float unk = floored(-std::fabs(m.unk));
     if (m.unk >= m.occ && m.unk >= m.emp) return {occ, emp};
     if (m.occ >= m.emp) return {unk, emp};
     return {occ, unk};
