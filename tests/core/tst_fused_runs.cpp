@@ -177,6 +177,28 @@ MapperSettings rowSettings(const std::string& model, const std::string& rule, bo
   return settings;
 }
 
+// Maps `d` on grid `g` with `settings` by the footprint path, one reading at a time on one thread
+// (the oracle), then on 2 and 3 threads: what differs first, or nothing.
+QString threadsAgainstFootprintPath(const Dataset& d, const GridSpec& g,
+                                    const MapperSettings& settings) {
+  Mapper oracle(d.ring, g, settings);
+  NullObserver observer;
+  oracle.setObserver(&observer);
+  {
+    ScopedThreadCount one(1);
+    if (!oracle.mapDataset(d)) return "the footprint path stopped";
+  }
+  for (const unsigned threads : {2u, 3u}) {
+    ScopedThreadCount count(threads);
+    Mapper runs(d.ring, g, settings);
+    if (!runs.mapDataset(d) || runs.readingsIntegrated() != d.readingCount())
+      return QString("%1 threads: not every reading was mapped").arg(threads);
+    if (!sameGrid(settings.rule, oracle.storage(), runs.storage()))
+      return QString("%1 threads: the grid differs from the footprint path's").arg(threads);
+  }
+  return {};
+}
+
 }  // namespace
 
 // testing::limitConeLanes for its lifetime: the cone rows' lanes and the run kernels' (masked
@@ -694,22 +716,8 @@ void TstFusedRuns::tallGridThreadsPassOverFarBeams() {
   QFETCH(bool, noEchoFree);
   static const Dataset d = tallGenerated();
   const MapperSettings settings = rowSettings(model.toStdString(), rule.toStdString(), noEchoFree);
-  Mapper oracle(d.ring, tallGrid(), settings);
-  NullObserver observer;
-  oracle.setObserver(&observer);  // the footprint path, one reading at a time
-  {
-    ScopedThreadCount one(1);
-    QVERIFY(oracle.mapDataset(d));
-  }
-  for (const unsigned threads : {2u, 3u}) {
-    ScopedThreadCount count(threads);
-    Mapper runs(d.ring, tallGrid(), settings);
-    QVERIFY(runs.mapDataset(d));
-    QCOMPARE(runs.readingsIntegrated(), d.readingCount());
-    QVERIFY2(
-        sameGrid(settings.rule, oracle.storage(), runs.storage()),
-        qPrintable(QString("%1 threads: the grid differs from the footprint path's").arg(threads)));
-  }
+  const QString difference = threadsAgainstFootprintPath(d, tallGrid(), settings);
+  QVERIFY2(difference.isEmpty(), qPrintable(difference));
 }
 
 void TstFusedRuns::additionInChunksKeepsTheBits_data() {
@@ -745,22 +753,8 @@ void TstFusedRuns::additionInChunksKeepsTheBits() {
   QVERIFY(d.readingCount() > 2 * kTotalsChunk);
   const MapperSettings settings = rowSettings(model.toStdString(), "addition", noEchoFree);
   QCOMPARE(settings.parameters.get("normalise"), 1.0);  // the rule's default: totals
-  Mapper oracle(d.ring, g, settings);
-  NullObserver observer;
-  oracle.setObserver(&observer);  // the footprint path, one reading at a time
-  {
-    ScopedThreadCount one(1);
-    QVERIFY(oracle.mapDataset(d));
-  }
-  for (const unsigned threads : {2u, 3u}) {
-    ScopedThreadCount count(threads);
-    Mapper runs(d.ring, g, settings);
-    QVERIFY(runs.mapDataset(d));
-    QCOMPARE(runs.readingsIntegrated(), d.readingCount());
-    QVERIFY2(
-        sameGrid(settings.rule, oracle.storage(), runs.storage()),
-        qPrintable(QString("%1 threads: the grid differs from the footprint path's").arg(threads)));
-  }
+  const QString difference = threadsAgainstFootprintPath(d, g, settings);
+  QVERIFY2(difference.isEmpty(), qPrintable(difference));
 }
 
 QTEST_APPLESS_MAIN(TstFusedRuns)
