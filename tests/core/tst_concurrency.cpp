@@ -568,9 +568,9 @@ void TstConcurrency::nestedRunsUseOneThread() {
 // Every parallel path, every kind of failure. Paths: the mapper's bands of rows (hpf × bayes), and
 // with a model that gives no runs (footprints of the band's rows), its bands in two passes for
 // footprint totals (hpf × addition, which normalises; with a model that gives no runs, on the
-// caller's thread alone), its ordered
-// pipeline (with an observer; and himm × himm, whose model does not rasterise rows), the
-// snapshot's layers on a grid of 200 000 cells, the beam tables' fill, and the parameter sweep.
+// caller's thread alone), its ordered pipeline (with an observer; and himm × himm, whose model
+// does not rasterise rows), the snapshot's layers on a grid of 200 000 cells, the beam tables'
+// fill, and the parameter sweep.
 // Failures: the model or the rule throws on a worker after 200 calls there (the rule of the
 // pipeline applies only on the caller's thread: there it throws on the caller, with workers
 // waiting on it), or the first or second thread start fails.
