@@ -195,12 +195,17 @@ class Grid {
   // once, lists that share cells too: each mark is a relaxed atomic store of the one value, a
   // plain byte store on x86. While threads mark this way, nothing else may touch the marks.
   // (Mapper::integrateDirect marks a chunk's cells on the thread that lists them, ahead of the
-  // thread that folds them in.)
+  // thread that folds them in.) A mark already set is only read: the threads list chunks of one
+  // neighbourhood in turn, and a store to a line the other CPU had written took that line from
+  // it every time (docs/performance.md, "HIMM: marks read before they are set").
   void markWrittenShared(std::span<const std::uint32_t> cells) {
     std::uint8_t* const marks = marks_.data();
-    for (const std::uint32_t c : cells)
-      std::atomic_ref<std::uint8_t>(marks[c]).store(kObserved | kWritten,
-                                                    std::memory_order_relaxed);
+    constexpr std::uint8_t kBoth = kObserved | kWritten;
+    for (const std::uint32_t c : cells) {
+      std::atomic_ref<std::uint8_t> mark(marks[c]);
+      if (mark.load(std::memory_order_relaxed) != kBoth)
+        mark.store(kBoth, std::memory_order_relaxed);
+    }
   }
 
   // markWritten() for `count` consecutive cells from `cell` (a run, footprint.h). In stores of
