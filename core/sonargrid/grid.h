@@ -190,6 +190,11 @@ class Grid {
 
   // markWritten() of one cell.
   void markWritten(std::uint32_t cell) { marks_[cell] = kObserved | kWritten; }
+  // markWritten() of the listed cells (any cells, in any order), a store each.
+  void markWritten(std::span<const std::uint32_t> cells) {
+    std::uint8_t* const marks = marks_.data();
+    for (const std::uint32_t c : cells) marks[c] = kObserved | kWritten;
+  }
 
   // markWritten() of the listed cells (any cells, in any order), from any number of threads at
   // once, lists that share cells too: each mark is a relaxed atomic store of the one value, a
