@@ -13,8 +13,6 @@
 #define SG_INLINE_LAMBDA
 #endif
 
-#include <bit>
-
 #include "sonargrid/models/lanes.h"
 #include "sonargrid/rules/rule_classes.h"
 
