@@ -10,6 +10,7 @@
 
 #include "sonargrid/models/lanes.h"
 #include "sonargrid/registry_hooks.h"
+#include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
 #include "sonargrid/rules/update_rule.h"
 
@@ -83,6 +84,7 @@ class TstRules : public QObject {
   void dempsterShaferCells();
   void dempsterShaferKeepsSmallMasses();
   void dempsterShaferFloorsTinyMasses();
+  void bayesFloorsTinyProbabilities();
   void unseenCellsAreUnknown();
 };
 
@@ -369,6 +371,73 @@ void TstRules::dempsterShaferFloorsTinyMasses() {
       const DempsterShaferCell& last = v->grid.cells<DempsterShaferCell>(0)[10];
       QCOMPARE(bitsOf(c.a), bitsOf(last.a));
       QCOMPARE(bitsOf(c.b), bitsOf(last.b));
+    }
+  }
+}
+
+void TstRules::bayesFloorsTinyProbabilities() {
+  // Bayes on the odds: each reading multiplies a cell's odds m/(1 − m) by p/(1 − p) (paper 002 eqs
+  // 5–6), and once m is tiny, m itself by the same. With p = 0.2f (the footprint's float) that is
+  // r = 0.2f/(1 − 0.2f) = 0.2500000047 a reading: from 0.5, after n readings m = rⁿ/(1 + rⁿ) to
+  // some ulps a step, r⁴⁸⁰ = 2⁻⁹⁶⁰ (1 + 9·10⁻⁶) is still above the floor (kBayesFloor = 2⁻⁹⁶⁰)
+  // and r⁴⁸¹ is below it: the 481st reading leaves exactly the floor, and so does every one after
+  // it (without it m went on through the denormals to 0). Then p = 0.8f, R = 0.8f/(1 − 0.8f) =
+  // 4.0000003 a reading: 480 of them bring the odds back to 2⁻⁹⁶⁰ R⁴⁸⁰ = 1.000036, m = 0.500009.
+  // Certain evidence (p = 0) leaves the floor, not 0, which nothing could move. Through apply(),
+  // and through the run kernels in every lane width the CPU has (11 cells: a group and a short
+  // tail), which must give the same bits. (Exact comparisons: QCOMPARE takes any two doubles
+  // within 10⁻¹² of 0 as equal.)
+  const double floor = cellrule::kBayesFloor;
+  QVERIFY(floor == std::ldexp(1.0, -960));
+  const double r = double(0.2f) / (1.0 - double(0.2f));
+  const double R = double(0.8f) / (1.0 - double(0.8f));
+  const auto relativelyNear = [](double a, double b, double tol) {
+    return std::abs(a - b) <= tol * std::abs(b);
+  };
+  const auto check = [&](auto applyEmpty, auto applyOccupied, auto applyCertain, const double& m,
+                         const double& certainCell) {
+    for (int n = 1; n <= 600; ++n) {
+      applyEmpty();
+      if (n == 100) QVERIFY(relativelyNear(m, std::pow(r, 100) / (1 + std::pow(r, 100)), 1e-12));
+      if (n == 480) {
+        QVERIFY(m > floor);
+        QVERIFY(relativelyNear(m, std::pow(r, 480), 1e-12));
+      }
+      if (n >= 481) QVERIFY2(m == floor, qPrintable(QString("%1: %2").arg(n).arg(m, 0, 'g', 17)));
+    }
+    for (int n = 1; n <= 480; ++n) applyOccupied();
+    const double odds = std::ldexp(std::pow(R, 480), -960);
+    QVERIFY2(relativelyNear(m, odds / (1 + odds), 1e-9), qPrintable(QString::number(m, 'g', 17)));
+    applyCertain();
+    QVERIFY(certainCell == floor);
+  };
+  auto b = rule("bayes-recursive", {}, 11);
+  const BayesCell* cells = b->grid.cells<BayesCell>(0);
+  check([&] { b->apply(fp({likelihood(0, 0.2)})); }, [&] { b->apply(fp({likelihood(0, 0.8)})); },
+        [&] { b->apply(fp({likelihood(1, 0.0)})); }, cells[0].p, cells[1].p);
+
+  EvidenceRuns emptyRuns, occupiedRuns, certainRuns;
+  const std::pair<EvidenceRuns*, float> kinds[] = {
+      {&emptyRuns, 0.2f}, {&occupiedRuns, 0.8f}, {&certainRuns, 0.0f}};
+  for (const auto& [runs, p] : kinds) {
+    runs->runs.push_back({0, 11, 0});
+    runs->empty.assign(11 + kRunPadding, p < 0.5f ? 1.0f - 2.0f * p : 0.0f);
+    runs->occupied.assign(11 + kRunPadding, p > 0.5f ? 2.0f * p - 1.0f : 0.0f);
+    runs->probability.assign(11 + kRunPadding, p);
+  }
+  for (const ConeLanes lanes : {ConeLanes::Avx512, ConeLanes::Avx2, ConeLanes::Four}) {
+    const ConeLanes previous = testing::limitConeLanes(lanes);
+    auto v = rule("bayes-recursive", {}, 11);
+    auto c = rule("bayes-recursive", {}, 11);
+    check([&] { v->rule->applyRuns(emptyRuns, v->grid, nullptr); },
+          [&] { v->rule->applyRuns(occupiedRuns, v->grid, nullptr); },
+          [&] { c->rule->applyRuns(certainRuns, c->grid, nullptr); },
+          v->grid.cells<BayesCell>(0)[10].p, c->grid.cells<BayesCell>(0)[10].p);
+    testing::limitConeLanes(previous);
+    for (int j = 0; j < 10; ++j) {
+      QCOMPARE(std::bit_cast<std::uint64_t>(v->grid.cells<BayesCell>(0)[j].p),
+               std::bit_cast<std::uint64_t>(v->grid.cells<BayesCell>(0)[10].p));
+      QVERIFY(c->grid.cells<BayesCell>(0)[j].p == floor);
     }
   }
 }

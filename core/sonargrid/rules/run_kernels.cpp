@@ -107,13 +107,8 @@ template <class V>
 [[gnu::always_inline]] inline V additionLanes(V m, V x) {
   return x > 0.0 ? m + x - m * x : m;
 }
-// Bayes with the probability p (cellrule::bayes).
-template <class V>
-[[gnu::always_inline]] inline V bayesLanes(V m, V p) {
-  const V num = p * m;
-  const V den = num + (1.0 - p) * (1.0 - m);
-  return den > 0.0 ? num / den : m;
-}
+// Bayes with the probability p: cellrule::bayesLanes (cell_updates.h).
+using cellrule::bayesLanes;
 // Paper 001's evidence as a probability (cellrule::bayesEvidence).
 template <class V>
 [[gnu::always_inline]] inline V bayesEvidenceLanes(V empty, V occupied) {

@@ -18,6 +18,7 @@
 #include "sonargrid/mapper.h"
 #include "sonargrid/models/cone_raster.h"
 #include "sonargrid/models/parameterized_shape.h"
+#include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
 
 // The clones' resolver (an ifunc) runs while the dynamic loader relocates the program, before a
@@ -189,13 +190,7 @@ struct RowJob {
       store(mean + at, mNew);
       store(m2 + at, load(m2 + at) + delta * (p - mNew));
     }
-    if (post) {  // BayesRule::apply, likelihood input
-      const Doubles m = load(post + at);
-      const Doubles num = p * m;
-      const Doubles den = num + (1.0 - p) * (1.0 - m);
-      const Doubles q = num / den;
-      store(post + at, den > 0.0 ? q : m);
-    }
+    if (post) store(post + at, cellrule::bayesLanes(load(post + at), p));  // BayesRule, likelihood
   }
 }
 
@@ -279,12 +274,10 @@ SG_BATCH_CLONES void batchRow(const RowJob& job) {
       store(mean + at, inside ? mNew : m);
       store(m2 + at, inside ? sNew : s);
     }
-    if (post) {  // BayesRule::apply, likelihood input
+    if (post) {  // BayesRule, likelihood input
       const Doubles m = load(post + at);
-      const Doubles num = p * m;
-      const Doubles den = num + (1.0 - p) * (1.0 - m);
-      const Doubles r = num / den;
-      store(post + at, (inside & (den > 0.0)) ? r : m);
+      const Doubles updated = cellrule::bayesLanes(m, p);
+      store(post + at, inside ? updated : m);
     }
   }
 }
