@@ -44,7 +44,7 @@ inline CellEvidence cellOfRun(const EvidenceRuns& runs, const EvidenceRuns::Run&
   return 0.5 + 0.5 * (static_cast<double>(occupied) - static_cast<double>(empty));
 }
 // The least probability a Bayes cell keeps, 2⁻⁹⁶⁰ (about 10⁻²⁸⁹): each reading of empty evidence
-// multiplies a cell's odds by p/(1 − p), and on a long log a cell seen free thousands of times
+// multiplies a cell's odds by p/(1 − p), and on the office log and long logs cells seen free often
 // sank through the denormal range, where each multiplication takes a slow path on some CPUs (a
 // million-reading re-map of hpf × bayes took 1.3 × the time it took with denormals flushed), to
 // exactly 0, which no later evidence can move. Far above the denormals (p m stays normal for any
