@@ -118,6 +118,9 @@ struct RowWindow {
     hi = std::min(hi, end - 1);
     for (int row = lo; row <= hi; ++row) f(row);
   }
+  // The first and the last row forEachRow(lo, hi, …) visits (none where first > last).
+  int firstRow(int lo) const { return std::max({lo, begin, 0}); }
+  int lastRow(int hi) const { return std::min(hi, end - 1); }
 };
 
 // One reading placed in the world.

@@ -5,6 +5,8 @@
 #include <QtTest>
 #include <cmath>
 #include <cstring>
+#include <random>
+#include <type_traits>
 
 #include "sonargrid/models/cone_raster.h"
 #include "sonargrid/models/lanes.h"
@@ -45,6 +47,7 @@ class TstModels : public QObject {
   void evidenceAndProbabilityAgree();
   void footprintMatchesEvaluate();
   void footprintRowsAreItsRows();
+  void spansInLanesAreTheRowsSpans();
   void reachBoundsTheFootprint();
   void declarationsAreComplete();
   void preferredRulesArePapersPairings_data();
@@ -463,6 +466,59 @@ void TstModels::footprintRowsAreItsRows() {
   QCOMPARE(listed(w, -3, 9), (std::vector<int>{8, 9}));
   QCOMPARE(listed(RowWindow{}, -3, 2), (std::vector<int>{0, 1, 2}));
   QVERIFY(listed(w, 16, 23).empty());
+}
+
+void TstModels::spansInLanesAreTheRowsSpans() {
+  // forEachConeRow finds its rows' spans four at a time in lanes in the AVX2 and AVX-512 builds of
+  // the cone models (kSpanLanes); the spans must be those of the one-row loop. The spans bound the
+  // cells that the per-cell test then picks, so a span wider than the loop's would leave the rows
+  // the same: the cells the spans hold in all, which reserve() is told, are compared too. Cones of
+  // every heading (a seventh of them on the ±π line or straight up or down), reach and half-angle
+  // up to 80°, inside and across the grid's edges, a third in a band of rows.
+  GridSpec grid;
+  grid.cellSize = 0.05;
+  grid.width = 240;
+  grid.height = 180;
+  const BeamTables tables(grid.cellSize, 130);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> x(-1.0, 13.0), y(-1.0, 10.0), heading(-3.2, 3.2),
+      reach(0.05, 6.4), half(0.02, 1.4);
+  struct Rows {
+    std::size_t bound = 0;
+    std::vector<std::pair<std::uint32_t, int>> rows;
+  };
+  auto run = [&](auto lanes, const Pose2D& sensor, double r, double h, RowWindow window) {
+    Rows out;
+    forEachConeRow<false, decltype(lanes)::value>(
+        sensor, r, h, grid, tables, [&](std::size_t bound) { out.bound = bound; },
+        [&](const ConeRow& row) { out.rows.emplace_back(row.cell, row.count); }, window);
+    return out;
+  };
+  std::size_t rows = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double axis =
+        i % 7 == 0 ? (i % 3 == 0 ? 0.5 : 1.0) * (i % 2 ? 1 : -1) * M_PI : heading(rng);
+    const Pose2D sensor(x(rng), y(rng), axis);
+    const double r = reach(rng), h = half(rng);
+    RowWindow window;
+    if (i % 3 == 0) {
+      window.begin = static_cast<int>(y(rng) * 20.0);
+      window.end = window.begin + 8 + i % 40;
+    }
+    const Rows one = run(std::false_type{}, sensor, r, h, window);
+    const Rows four = run(std::true_type{}, sensor, r, h, window);
+    QCOMPARE(four.bound, one.bound);
+    QCOMPARE(four.rows, one.rows);
+    rows += one.rows.size();
+  }
+  QVERIFY(rows > 100000);  // the cones met the grid
+  // The window's first and last rows, by hand: rows 5–26 in [8, 16) are 8–15, rows −3–2 in the
+  // whole grid 0–2.
+  const RowWindow w{8, 16};
+  QCOMPARE(w.firstRow(5), 8);
+  QCOMPARE(w.lastRow(26), 15);
+  QCOMPARE(RowWindow{}.firstRow(-3), 0);
+  QCOMPARE(RowWindow{}.lastRow(2), 2);
 }
 
 void TstModels::reachBoundsTheFootprint() {

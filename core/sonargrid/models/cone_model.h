@@ -205,8 +205,9 @@ template <class Shape, int W>
 }
 
 // coneRuns() in W lanes: the rasteriser and the rows' evaluation in one function, so that the
-// shape's values are set up in lanes once a reading rather than once a row.
-template <class Shape, int W>
+// shape's values are set up in lanes once a reading rather than once a row. kSpanLanes: the
+// rasteriser's spans in lanes too (forEachConeRow), where the function is built for AVX2 or later.
+template <class Shape, int W, bool kSpanLanes = false>
 [[gnu::always_inline]] inline void coneRunsIn(const ConeBeam<Shape>& pb, const Beam& beam,
                                               const GridSpec& grid, const BeamTables& tables,
                                               RowWindow window, EvidenceRuns& out) {
@@ -219,7 +220,7 @@ template <class Shape, int W>
   const std::size_t runsBefore = out.runs.size();
   EvidenceRuns::Run* runEnd = nullptr;
   // Eight lanes are built for AVX2, which rounds in one instruction.
-  forEachConeRow<W == 8>(
+  forEachConeRow<W == 8, kSpanLanes>(
       beam.sensor, pb.reach, pb.halfAngle, grid, tables,
       [&](std::size_t bound) {
         // A row of n cells gives at most (n + 1) / 2 <= n runs: room for `bound` of them.
@@ -250,7 +251,7 @@ template <class Shape>
 __attribute__((target("avx2"))) void coneRunsWide(const ConeBeam<Shape>& pb, const Beam& beam,
                                                   const GridSpec& grid, const BeamTables& tables,
                                                   RowWindow window, EvidenceRuns& out) {
-  coneRunsIn<Shape, lanes::kWideWidth>(pb, beam, grid, tables, window, out);
+  coneRunsIn<Shape, lanes::kWideWidth, true>(pb, beam, grid, tables, window, out);
 }
 // The same eight lanes built for AVX-512 (F, VL, BW, DQ): the same operations on the same 32-byte
 // vectors (still no FMA: the files are built with -ffp-contract=off), with 32 vector registers
@@ -260,7 +261,7 @@ template <class Shape>
 __attribute__((target("avx2,avx512f,avx512vl,avx512bw,avx512dq"))) void coneRunsWide512(
     const ConeBeam<Shape>& pb, const Beam& beam, const GridSpec& grid, const BeamTables& tables,
     RowWindow window, EvidenceRuns& out) {
-  coneRunsIn<Shape, lanes::kWideWidth>(pb, beam, grid, tables, window, out);
+  coneRunsIn<Shape, lanes::kWideWidth, true>(pb, beam, grid, tables, window, out);
 }
 #endif
 
