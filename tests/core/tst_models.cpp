@@ -5,6 +5,7 @@
 #include <QtTest>
 #include <cmath>
 #include <cstring>
+#include <numbers>
 #include <random>
 #include <type_traits>
 
@@ -497,7 +498,7 @@ void TstModels::spansInLanesAreTheRowsSpans() {
   std::size_t rows = 0;
   for (int i = 0; i < 20000; ++i) {
     const double axis =
-        i % 7 == 0 ? (i % 3 == 0 ? 0.5 : 1.0) * (i % 2 ? 1 : -1) * M_PI : heading(rng);
+        i % 7 == 0 ? (i % 3 == 0 ? 0.5 : 1.0) * (i % 2 ? 1 : -1) * std::numbers::pi : heading(rng);
     const Pose2D sensor(x(rng), y(rng), axis);
     const double r = reach(rng), h = half(rng);
     RowWindow window;
