@@ -114,9 +114,8 @@ struct RowWindow {
   // that it is built for the caller's target (the cone rasteriser's AVX2 function, cone_model.h).
   template <class F>
   [[gnu::always_inline]] void forEachRow(int lo, int hi, F&& f) const {
-    lo = std::max({lo, begin, 0});
-    hi = std::min(hi, end - 1);
-    for (int row = lo; row <= hi; ++row) f(row);
+    const int last = lastRow(hi);
+    for (int row = firstRow(lo); row <= last; ++row) f(row);
   }
   // The first and the last row forEachRow(lo, hi, …) visits (none where first > last).
   int firstRow(int lo) const { return std::max({lo, begin, 0}); }

@@ -95,7 +95,9 @@ namespace detail {
 // ceilToInt and floorToInt do it, which give std::ceil's and std::floor's integers). Four rows
 // then share one square root, and the span pass took a fifth of the rasteriser's samples one row
 // at a time (perf, docs/performance.md). Four lanes, not eight: GCC 12 made the eight-lane masks
-// scalar code in the AVX-512 build.
+// scalar code in the AVX-512 build. The one-row loop stays for the baseline build (the footprint
+// path, the sweeps' batch maps, CPUs without AVX2), where these lanes, lowered to SSE2 without its
+// rounding instructions, took 1.8–1.9 × the loop's time.
 [[gnu::always_inline]] inline void spansInLanes(const SpanGeometry& g, int first, int last,
                                                 ConeSpan* out, std::size_t& count,
                                                 std::size_t& bound) {
