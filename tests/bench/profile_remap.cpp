@@ -12,6 +12,11 @@
 // of `sim` or `stress`, a path to an .sglog log (datasets/office/office.sglog: `sonargrid-cli
 // bench`'s office re-map) maps that log on a grid fitted to its odometry at 5 cm; READINGS is then
 // ignored.
+// With PROFILE_PARTS=1 and K, it times instead the one-thread batch path's two parts, K times in
+// turn: the model's rows alone (SensorModel::evidenceRuns for every reading) and the rows with the
+// rule's run kernels (UpdateRule::applyRuns, and normalising addition's deferred arc), on a grid
+// of its own, without the observed marks. The kernels' share is then the difference, measured in
+// one process, where two whole re-maps in turn on a loaded machine can differ by more.
 
 #include <algorithm>
 #include <chrono>
@@ -20,11 +25,13 @@
 #include <cstdlib>
 #include <ctime>
 #include <exception>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "bench_workload.h"
+#include "sonargrid/beam_tables.h"
 #include "sonargrid/concurrency.h"
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/models/lanes.h"
@@ -61,6 +68,77 @@ double cpuMs(bool process = false) {
   timespec t{};
   clock_gettime(process ? CLOCK_PROCESS_CPUTIME_ID : CLOCK_THREAD_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+// PROFILE_PARTS (above). The beams as Mapper::beamOf places them, from the odometry.
+int timeParts(const sg::Dataset& d, const sg::GridSpec& spec, const std::string& modelName,
+              const std::string& ruleName, int times) {
+  const std::unique_ptr<sg::SensorModel> model = sg::makeSensorModel(modelName);
+  const std::unique_ptr<sg::UpdateRule> rule = sg::makeUpdateRule(ruleName);
+  const sg::ParameterSet params = sg::defaultParameters(modelName, ruleName);
+  model->configure(params);
+  rule->configure(params);
+  const auto tables = sg::BeamTables::shared(spec.cellSize, model->reach(d.ring.maxRange));
+  std::vector<sg::Beam> beams;
+  for (const sg::Scan& scan : d.scans) {
+    const Eigen::Matrix2d rotation = scan.odometry.rotation();
+    for (const sg::Reading& reading : scan.readings) {
+      sg::Beam beam;
+      beam.sensor = scan.odometry.compose(d.ring.sonars.at(reading.sonar).pose, rotation);
+      beam.range = reading.range < d.ring.maxRange ? reading.range : sg::Reading::kNoEcho;
+      beam.maxRange = d.ring.maxRange;
+      beams.push_back(beam);
+    }
+  }
+  sg::EvidenceRuns runs, deferred;
+  if (beams.empty() ||
+      !model->evidenceRuns(beams.front(), spec, *tables, sg::RowWindow{0, 0}, runs)) {
+    std::printf("parts: %s gives no runs (its cells go straight to the grid)\n", modelName.c_str());
+    return 0;
+  }
+  const bool totals = rule->needsTotals();
+  std::size_t cells = 0, rows = 0, writing = 0;  // over the first time
+  std::vector<double> alone, together, share;
+  for (int k = 0; k < times; ++k) {
+    sg::Grid grid(spec, rule->layout());
+    const double t0 = cpuMs();
+    for (const sg::Beam& beam : beams) {
+      runs.clear();
+      model->evidenceRuns(beam, spec, *tables, sg::RowWindow{}, runs);
+    }
+    const double t1 = cpuMs();
+    for (const sg::Beam& beam : beams) {
+      runs.clear();
+      model->evidenceRuns(beam, spec, *tables, sg::RowWindow{}, runs);
+      deferred.clear();
+      rule->applyRuns(runs, grid, &deferred);
+      if (totals)
+        rule->applyDeferred(deferred, sg::FootprintTotals{sg::occupiedFixedPoint(deferred)}, grid);
+      if (k == 0 && !runs.runs.empty()) {
+        ++writing;
+        rows += runs.runs.size();
+        for (const sg::EvidenceRuns::Run& run : runs.runs)
+          cells += static_cast<std::size_t>(run.count);
+      }
+    }
+    const double t2 = cpuMs();
+    alone.push_back(t1 - t0);
+    together.push_back(t2 - t1);
+    share.push_back((t2 - t1 - (t1 - t0)) / (t2 - t1));
+  }
+  const double n = static_cast<double>(std::max<std::size_t>(writing, 1));
+  std::printf(
+      "parts on one thread, %d times in turn: rows alone median %.1f ms, rows and rule %.1f ms; "
+      "the rule's kernels %.0f %% (median of the pairs); %zu readings write, %.1f cells in %.1f "
+      "runs each\n",
+      times, median(alone), median(together), 100.0 * median(share), writing,
+      static_cast<double>(cells) / n, static_cast<double>(rows) / n);
+  return 0;
 }
 
 int run(int argc, char** argv) {
@@ -108,6 +186,10 @@ int run(int argc, char** argv) {
               batch == h ? "the same" : "DIFFERENT");
   const int timed = argc > 5 ? std::atoi(argv[5]) : 0;
   const int threads = argc > 6 ? std::max(1, std::atoi(argv[6])) : 1;
+  if (const char* parts = std::getenv("PROFILE_PARTS"); parts && std::string(parts) == "1") {
+    if (timed <= 0) throw std::invalid_argument("PROFILE_PARTS=1 needs K, the times to run");
+    return timeParts(d, mapper.snapshot().spec, argv[1], argv[2], timed);
+  }
   if (timed > 0) {
     sg::ScopedThreadCount count(static_cast<unsigned>(threads));
     std::vector<double> ms, wall;
