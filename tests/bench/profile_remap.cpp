@@ -96,8 +96,11 @@ int timeParts(const sg::Dataset& d, const sg::GridSpec& spec, const std::string&
     }
   }
   sg::EvidenceRuns runs, deferred;
-  if (beams.empty() ||
-      !model->evidenceRuns(beams.front(), spec, *tables, sg::RowWindow{0, 0}, runs)) {
+  if (beams.empty()) {
+    std::printf("parts: the log has no readings\n");
+    return 0;
+  }
+  if (!model->evidenceRuns(beams.front(), spec, *tables, sg::RowWindow{0, 0}, runs)) {
     std::printf("parts: %s gives no runs (its cells go straight to the grid)\n", modelName.c_str());
     return 0;
   }
