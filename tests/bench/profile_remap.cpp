@@ -13,10 +13,13 @@
 // bench`'s office re-map) maps that log on a grid fitted to its odometry at 5 cm; READINGS is then
 // ignored.
 // With PROFILE_PARTS=1 and K, it times instead the one-thread batch path's two parts, K times in
-// turn: the model's rows alone (SensorModel::evidenceRuns for every reading) and the rows with the
-// rule's run kernels (UpdateRule::applyRuns, and normalising addition's deferred arc), on a grid
-// of its own, without the observed marks. The kernels' share is then the difference, measured in
-// one process, where two whole re-maps in turn on a loaded machine can differ by more.
+// turn (THREADS is then ignored): the model's rows alone (SensorModel::evidenceRuns for every
+// reading), then the rows with the rule's run kernels (UpdateRule::applyRuns, and normalising
+// addition's deferred arc) on a grid of its own, without the observed marks. The difference is
+// the kernels' time, measured in one process a few hundred milliseconds apart, where two whole
+// re-maps in turn on a loaded machine can differ by more than the kernels take. It prints the
+// medians of both, the median of the pairs' shares of the kernels, and the cells and runs of a
+// reading that writes.
 
 #include <algorithm>
 #include <chrono>
@@ -101,11 +104,21 @@ int timeParts(const sg::Dataset& d, const sg::GridSpec& spec, const std::string&
     return 0;
   }
   if (!model->evidenceRuns(beams.front(), spec, *tables, sg::RowWindow{0, 0}, runs)) {
-    std::printf("parts: %s gives no runs (its cells go straight to the grid)\n", modelName.c_str());
+    std::printf("parts: %s gives no runs (the batch path maps its cells another way)\n",
+                modelName.c_str());
     return 0;
   }
   const bool totals = rule->needsTotals();
-  std::size_t cells = 0, rows = 0, writing = 0;  // over the first time
+  // What a reading writes, counted once, outside the timing.
+  std::size_t cells = 0, runCount = 0, writing = 0;
+  for (const sg::Beam& beam : beams) {
+    runs.clear();
+    model->evidenceRuns(beam, spec, *tables, sg::RowWindow{}, runs);
+    if (runs.runs.empty()) continue;
+    ++writing;
+    runCount += runs.runs.size();
+    for (const sg::EvidenceRuns::Run& run : runs.runs) cells += static_cast<std::size_t>(run.count);
+  }
   std::vector<double> alone, together, share;
   for (int k = 0; k < times; ++k) {
     sg::Grid grid(spec, rule->layout());
@@ -122,25 +135,19 @@ int timeParts(const sg::Dataset& d, const sg::GridSpec& spec, const std::string&
       rule->applyRuns(runs, grid, &deferred);
       if (totals)
         rule->applyDeferred(deferred, sg::FootprintTotals{sg::occupiedFixedPoint(deferred)}, grid);
-      if (k == 0 && !runs.runs.empty()) {
-        ++writing;
-        rows += runs.runs.size();
-        for (const sg::EvidenceRuns::Run& run : runs.runs)
-          cells += static_cast<std::size_t>(run.count);
-      }
     }
     const double t2 = cpuMs();
     alone.push_back(t1 - t0);
     together.push_back(t2 - t1);
-    share.push_back((t2 - t1 - (t1 - t0)) / (t2 - t1));
+    if (t2 > t1) share.push_back((t2 - t1 - (t1 - t0)) / (t2 - t1));
   }
   const double n = static_cast<double>(std::max<std::size_t>(writing, 1));
   std::printf(
       "parts on one thread, %d times in turn: rows alone median %.1f ms, rows and rule %.1f ms; "
       "the rule's kernels %.0f %% (median of the pairs); %zu readings write, %.1f cells in %.1f "
       "runs each\n",
-      times, median(alone), median(together), 100.0 * median(share), writing,
-      static_cast<double>(cells) / n, static_cast<double>(rows) / n);
+      times, median(alone), median(together), share.empty() ? 0.0 : 100.0 * median(share), writing,
+      static_cast<double>(cells) / n, static_cast<double>(runCount) / n);
   return 0;
 }
 
