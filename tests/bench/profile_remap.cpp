@@ -73,11 +73,6 @@ double cpuMs(bool process = false) {
   return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
 // PROFILE_PARTS (above). The beams as Mapper::beamOf places them, from the odometry.
 int timeParts(const sg::Dataset& d, const sg::GridSpec& spec, const std::string& modelName,
               const std::string& ruleName, int times) {
@@ -109,11 +104,14 @@ int timeParts(const sg::Dataset& d, const sg::GridSpec& spec, const std::string&
     return 0;
   }
   const bool totals = rule->needsTotals();
+  auto rowsOf = [&](const sg::Beam& beam) {
+    runs.clear();
+    model->evidenceRuns(beam, spec, *tables, sg::RowWindow{}, runs);
+  };
   // What a reading writes, counted once, outside the timing.
   std::size_t cells = 0, runCount = 0, writing = 0;
   for (const sg::Beam& beam : beams) {
-    runs.clear();
-    model->evidenceRuns(beam, spec, *tables, sg::RowWindow{}, runs);
+    rowsOf(beam);
     if (runs.runs.empty()) continue;
     ++writing;
     runCount += runs.runs.size();
@@ -123,14 +121,10 @@ int timeParts(const sg::Dataset& d, const sg::GridSpec& spec, const std::string&
   for (int k = 0; k < times; ++k) {
     sg::Grid grid(spec, rule->layout());
     const double t0 = cpuMs();
-    for (const sg::Beam& beam : beams) {
-      runs.clear();
-      model->evidenceRuns(beam, spec, *tables, sg::RowWindow{}, runs);
-    }
+    for (const sg::Beam& beam : beams) rowsOf(beam);
     const double t1 = cpuMs();
     for (const sg::Beam& beam : beams) {
-      runs.clear();
-      model->evidenceRuns(beam, spec, *tables, sg::RowWindow{}, runs);
+      rowsOf(beam);
       deferred.clear();
       rule->applyRuns(runs, grid, &deferred);
       if (totals)
@@ -146,8 +140,9 @@ int timeParts(const sg::Dataset& d, const sg::GridSpec& spec, const std::string&
       "parts on one thread, %d times in turn: rows alone median %.1f ms, rows and rule %.1f ms; "
       "the rule's kernels %.0f %% (median of the pairs); %zu readings write, %.1f cells in %.1f "
       "runs each\n",
-      times, median(alone), median(together), share.empty() ? 0.0 : 100.0 * median(share), writing,
-      static_cast<double>(cells) / n, static_cast<double>(runCount) / n);
+      times, sg::workload::median(alone), sg::workload::median(together),
+      100.0 * sg::workload::median(share), writing, static_cast<double>(cells) / n,
+      static_cast<double>(runCount) / n);
   return 0;
 }
 
