@@ -18,7 +18,27 @@ cmake --build build-tsan -j "$(nproc)"
 export SONARGRID_THREADS=4
 # tsan.supp: reports from inside Qt and GDAL, which are not built with ThreadSanitizer.
 export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/.ci/tsan.supp"
-ctest --test-dir build-tsan -L "core|cli" -E '^tst_cli_threads$' --output-on-failure -j "$(nproc)"
+# Not here, as they run only code that other suites run here on its threads, and took 14 minutes
+# of this job's 28 (2026-11-29; they run whole in the uninstrumented build, .ci/test.sh):
+# tst_cli_bench (the bench command's timings: 8 minutes under TSan, excluded from ASan for the
+# same reason), tst_reproduce and tst_cli_goodness_study (whose sweeps tst_sweep,
+# tst_batch_evaluation, tst_rank_correlation and tst_cli_sweep run here), and tst_fused_runs,
+# which runs below with a subset of its longest function's rows.
+ctest --test-dir build-tsan -L "core|cli" \
+  -E '^(tst_cli_threads|tst_cli_bench|tst_reproduce|tst_cli_goodness_study|tst_fused_runs)$' \
+  --output-on-failure -j "$(nproc)"
+# tst_fused_runs: every function whole but runsGiveTheFootprintPathsBits (60 rows, each mapping the
+# workload at 1, 2 and 3 threads in three lane widths: 145 s of its 205 s under TSan), of which one
+# row runs per rule kernel, plus addition's arc applied at once, a no-echo row and a prior of 0.3.
+fused=build-tsan/tests/core/tst_fused_runs
+mapfile -t functions < <("$fused" -functions | sed 's/()$//' | grep -vx runsGiveTheFootprintPathsBits)
+"$fused" "${functions[@]}" \
+  "runsGiveTheFootprintPathsBits:hpf/addition" "runsGiveTheFootprintPathsBits:hpf/bayes" \
+  "runsGiveTheFootprintPathsBits:hpf/bayes-recursive" "runsGiveTheFootprintPathsBits:hpf/log" \
+  "runsGiveTheFootprintPathsBits:hpf/logodds" "runsGiveTheFootprintPathsBits:hpf/dempster-shafer" \
+  "runsGiveTheFootprintPathsBits:konolige/addition normalise=0" \
+  "runsGiveTheFootprintPathsBits:murphy/bayes no_echo=1" \
+  "runsGiveTheFootprintPathsBits:parameterized/logodds prior=0.3"
 # tst_cli_threads runs the CLI 100 times (every pair at three thread counts), over five minutes
 # under TSan. Here: one pair for each way of mapping (bands, bands in two passes for totals, the
 # pipeline), then its other cases whole. The full suite runs in the uninstrumented build (.ci/test.sh).
