@@ -32,14 +32,11 @@ ctest --test-dir build-tsan -L "core|cli" \
 # workload at 1, 2 and 3 threads in three lane widths: 145 s of its 205 s under TSan), of which one
 # row runs per rule kernel, plus addition's arc applied at once, a no-echo row and a prior of 0.3.
 fused=build-tsan/tests/core/tst_fused_runs
-mapfile -t functions < <("$fused" -functions | sed 's/()$//' | grep -vx runsGiveTheFootprintPathsBits)
-"$fused" "${functions[@]}" \
-  "runsGiveTheFootprintPathsBits:hpf/addition" "runsGiveTheFootprintPathsBits:hpf/bayes" \
-  "runsGiveTheFootprintPathsBits:hpf/bayes-recursive" "runsGiveTheFootprintPathsBits:hpf/log" \
-  "runsGiveTheFootprintPathsBits:hpf/logodds" "runsGiveTheFootprintPathsBits:hpf/dempster-shafer" \
-  "runsGiveTheFootprintPathsBits:konolige/addition normalise=0" \
-  "runsGiveTheFootprintPathsBits:murphy/bayes no_echo=1" \
-  "runsGiveTheFootprintPathsBits:parameterized/logodds prior=0.3"
+long=runsGiveTheFootprintPathsBits
+rows=("hpf/addition" "hpf/bayes" "hpf/bayes-recursive" "hpf/log" "hpf/logodds" "hpf/dempster-shafer"
+  "konolige/addition normalise=0" "murphy/bayes no_echo=1" "parameterized/logodds prior=0.3")
+mapfile -t functions < <("$fused" -functions | sed 's/()$//' | grep -vx "$long")
+"$fused" "${functions[@]}" "${rows[@]/#/$long:}"
 # tst_cli_threads runs the CLI 100 times (every pair at three thread counts), over five minutes
 # under TSan. Here: one pair for each way of mapping (bands, bands in two passes for totals, the
 # pipeline), then its other cases whole. The full suite runs in the uninstrumented build (.ci/test.sh).
