@@ -21,6 +21,10 @@ packages=(
   xvfb xauth                                # xvfb-run for the GL tests (ctest label gl)
   clang libclang-rt-14-dev                  # libFuzzer + sanitizer runtimes (.ci/fuzz.sh)
   qemu-user                                 # a CPU without AVX2, emulated (.ci/baseline-cpu.sh)
+  pybind11-dev python3-dev python3-numpy    # the Python module, import sonargrid (docs/python.md)
+  python3-pytest                            # its test suite (tests/python)
+  slurmctld slurmd slurm-client munge       # a one-node Slurm cluster for .ci/slurm.sh
+  ccache                                    # compiler cache shared by the CI builds (.ci/build.sh)
 )
 
 missing=()
