@@ -6,7 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-30}"
-cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+source .ci/ccache.sh
+cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${ccache_flags[@]}" -DSONARGRID_BUILD_PYTHON=OFF -DCMAKE_CXX_COMPILER=clang++ \
   -DSONARGRID_BUILD_FUZZERS=ON -DSONARGRID_BUILD_TESTS=OFF -DSONARGRID_BUILD_BENCHMARKS=OFF -DSONARGRID_BUILD_GUI=OFF
 cmake --build build-fuzz -j "$(nproc)" --target fuzzers
 mkdir -p build-fuzz/findings

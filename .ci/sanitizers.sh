@@ -10,7 +10,8 @@ flags="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recove
 # full debug information (a large test file: 11–13 s against 14–15 s). -O1, as AddressSanitizer's
 # own documentation suggests: on a clean clone (2026-11-29, two processors) the job took 691 s
 # against 902 s at -O2, its compilers' CPU 1049 against 1442 s, and its ctest run 200 against 214 s.
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSONARGRID_BUILD_BENCHMARKS=OFF \
+source .ci/ccache.sh
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${ccache_flags[@]}" -DSONARGRID_BUILD_PYTHON=OFF -DSONARGRID_BUILD_BENCHMARKS=OFF \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
   -DSONARGRID_BUILD_GUI=OFF \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined"

@@ -10,7 +10,8 @@ cd "$(dirname "$0")/.."
 flags="-fsanitize=thread -fno-omit-frame-pointer"
 # -g1: line tables only, which the reports' stack traces need, for less compile time than -g's
 # full debug information (a large test file: 11–13 s against 14–15 s).
-cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSONARGRID_BUILD_BENCHMARKS=OFF \
+source .ci/ccache.sh
+cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${ccache_flags[@]}" -DSONARGRID_BUILD_PYTHON=OFF -DSONARGRID_BUILD_BENCHMARKS=OFF \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
   -DSONARGRID_BUILD_GUI=OFF -DSONARGRID_TEST_TIMEOUT=900 \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=thread"
