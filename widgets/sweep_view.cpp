@@ -390,7 +390,18 @@ void SweepView::refillBestRules() {
   updating_ = false;
 }
 
-std::optional<OptimalSet> SweepView::best() const {
+std::optional<OptimalSet> SweepView::best(QString* why) const {
+  // Called from slots and the plot timer: nothing may leave it (an exception through the event
+  // loop ends the app). What the rule could not choose is said in the best label instead.
+  try {
+    return chooseBest();
+  } catch (const std::exception& e) {
+    if (why) *why = QString::fromUtf8(e.what());
+    return std::nullopt;
+  }
+}
+
+std::optional<OptimalSet> SweepView::chooseBest() const {
   const int c = plotColumn();
   if (c < 0 || !job_) return std::nullopt;
   const std::vector<std::optional<double>> values =
@@ -439,9 +450,12 @@ MapperSettings SweepView::settingsOf(const ParameterSet& set) const {
 }
 
 void SweepView::refreshBest() {
-  const std::optional<OptimalSet> b = best();
+  QString why;
+  const std::optional<OptimalSet> b = best(&why);
   if (!b) {
-    bestLabel_->setText(job_ ? tr("No set has a value of this metric yet.") : QString());
+    bestLabel_->setText(!job_           ? QString()
+                        : why.isEmpty() ? tr("No set has a value of this metric yet.")
+                                        : tr("Cannot choose a best set: %1").arg(why));
   } else {
     const QString members =
         b->members.size() == 1

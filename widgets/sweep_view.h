@@ -66,8 +66,9 @@ class SweepView : public QWidget {
   // The metric column the plots and the best set use, and the rule picking the best set.
   bool setPlotColumn(const QString& column);
   bool setBestRule(BestRule rule);
-  // The best set by the rule over the finished sets; empty when none has a value.
-  std::optional<OptimalSet> best() const;
+  // The best set by the rule over the finished sets; empty when none has a value or the rule
+  // cannot choose one (then `why`, when given, says why). Never throws.
+  std::optional<OptimalSet> best(QString* why = nullptr) const;
   // Emit applyRequested / pinRequested for the best set or for rows of the table.
   bool applyBest();
   bool applyRow(std::size_t index);
@@ -85,6 +86,7 @@ class SweepView : public QWidget {
   void closeEvent(QCloseEvent* event) override;
 
  private:
+  std::optional<OptimalSet> chooseBest() const;  // best(), throwing what the rules throw
   void buildView();
   // The sweep of choice() over inputs_; throws SweepSpecError / std::exception with the reason.
   std::shared_ptr<SweepJob> makeJob() const;

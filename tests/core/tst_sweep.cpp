@@ -167,6 +167,34 @@ class TestSweep : public QObject {
                              nearestMeanVsdns(std::vector<std::optional<double>>{0.1}, sets));
   }
 
+  void lowestBinKeepsWholeNumbersSwept() {
+    // Issue 49: HIMM's increments are whole numbers. A lowest bin holding decrement 0, 5, 10, 15
+    // has the mean 7.5, which ParameterSet refuses (the sweep view then terminated the app); and
+    // increment 1, 6, 10, 15 has the whole mean 8, a value never swept. Each takes the members'
+    // value nearest the mean: 5 and 10 are both 2.5 from 7.5, and 6 and 10 both 2 from 8; the
+    // earlier member wins the tie. The real parameter p_hit (0.6, 0.8) still averages to 0.7.
+    std::vector<ParameterSet> sets;
+    const double decrements[] = {0, 5, 10, 15};
+    const double increments[] = {1, 6, 10, 15};
+    const double hits[] = {0.6, 0.8, 0.6, 0.8};
+    for (int k = 0; k < 4; ++k) {
+      ParameterSet s = defaultParameters("himm", "himm");
+      s.set("decrement", decrements[k]);
+      s.set("increment", increments[k]);
+      s.set("p_hit", hits[k]);
+      sets.push_back(s);
+    }
+    const ParameterSet mean = averageParameters(sets, {0, 1, 2, 3});
+    QCOMPARE(mean.get("decrement"), 5.0);
+    QCOMPARE(mean.get("increment"), 6.0);
+    QCOMPARE(mean.get("p_hit"), 0.7);
+    // Through the rule: every set in the lowest bin (equal VSDNS), the same choice.
+    const std::vector<std::optional<double>> v{0.25, 0.25, 0.25, 0.25};
+    const OptimalSet best = lowestBinAverage(v, sets);
+    QCOMPARE(best.members.size(), std::size_t{4});
+    QCOMPARE(best.parameters.get("decrement"), 5.0);
+  }
+
   void noiseAndTwoRunRulesByHand() {
     std::vector<ParameterSet> sets{setOf(6, 0.95, 0.5, 0.05), setOf(7, 0.95, 0.5, 0.05),
                                    setOf(8, 0.95, 0.5, 0.05)};

@@ -64,7 +64,23 @@ ParameterSet averageParameters(const std::vector<ParameterSet>& sets,
     const bool constant = std::all_of(members.begin(), members.end(), [&](std::size_t i) {
       return sets[i].get(name) == out.get(name);
     });
-    if (!constant) out.set(name, mean);
+    if (constant) continue;
+    // A whole-number parameter (HIMM's increments, a switch) cannot take a mean such as 2.5, and
+    // a whole mean may be a value never swept (the mean of 1, 6, 10, 15 is 8): it takes the
+    // members' value nearest the mean, the first member's on a tie, so the result is a set the
+    // sweep mapped in that parameter.
+    const auto spec = std::find_if(out.specs().begin(), out.specs().end(),
+                                   [&](const ParameterSpec& s) { return s.name == name; });
+    if (spec != out.specs().end() && spec->integer) {
+      double nearest = sets[members.front()].get(name);
+      for (std::size_t i : members) {
+        const double v = sets[i].get(name);
+        if (std::abs(v - mean) < std::abs(nearest - mean)) nearest = v;
+      }
+      out.set(name, nearest);
+    } else {
+      out.set(name, mean);
+    }
   }
   return out;
 }

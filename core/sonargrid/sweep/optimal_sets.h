@@ -60,8 +60,9 @@ struct OptimalSet {
   double criterion = 0.0;            // the value the rule looked at (see each rule)
 };
 
-// Every numeric parameter averaged over `members` (lowest-bin rule). Throws std::invalid_argument
-// on an empty list.
+// Every numeric parameter averaged over `members` (lowest-bin rule); a whole-number parameter
+// takes the members' value nearest that mean (the first member's on a tie), never a value that
+// was not swept. Throws std::invalid_argument on an empty list.
 ParameterSet averageParameters(const std::vector<ParameterSet>& sets,
                                const std::vector<std::size_t>& members);
 
