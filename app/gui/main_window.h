@@ -211,6 +211,8 @@ class MainWindow : public QMainWindow {
   // Makes a read project the document, once its log (if any) is loaded.
   void adoptProject(const QString& path, const ProjectState& state, bool modified, bool quiet);
   // Unsaved changes: Save, Discard or Cancel. True when the window may close.
+  // Names the sweep settings a project left out (readProject()), if any.
+  void sayDropped(const QString& path, const QStringList& dropped);
   bool maybeSave();
 
   Document* document_;

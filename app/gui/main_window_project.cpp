@@ -7,6 +7,7 @@
 #include <QMessageBox>
 #include <QPushButton>
 #include <QStatusBar>
+#include <cstdio>
 
 #include "autosave.h"
 #include "document.h"
@@ -30,14 +31,26 @@ ProjectState MainWindow::projectState() const {
   return state;
 }
 
+void MainWindow::sayDropped(const QString& path, const QStringList& dropped) {
+  if (dropped.isEmpty()) return;
+  // The rest of the project opened; what no longer applied is named, on the status bar and on
+  // stderr (a headless run has no status bar to read).
+  const QString text = tr("%1: left out sweep settings that no longer apply: %2")
+                           .arg(QDir::toNativeSeparators(path), dropped.join(QStringLiteral("; ")));
+  statusBar()->showMessage(text, 20000);
+  std::fprintf(stderr, "sonargrid: %s\n", qPrintable(text));
+}
+
 bool MainWindow::openProject(const QString& path, bool quiet) {
   ProjectState state;
+  QStringList dropped;
   try {
-    state = readProject(path);
+    state = readProject(path, &dropped);
   } catch (const ProjectError& e) {
     return reportError(tr("Cannot open project"), QString::fromUtf8(e.what()), quiet);
   }
   adoptProject(path, state, false, quiet);
+  sayDropped(path, dropped);
   if (state.logPath.isEmpty()) return true;
   return !quiet || waitForLoad();
 }
@@ -133,8 +146,9 @@ bool MainWindow::offerRecovery(const QString& given) {
   }
   if (answer != QLatin1String("yes")) return false;
   ProjectState state;
+  QStringList dropped;
   try {
-    state = readProject(newest);
+    state = readProject(newest, &dropped);
   } catch (const ProjectError& e) {
     return reportError(tr("Cannot recover"), QString::fromUtf8(e.what()), false);
   }
@@ -142,6 +156,7 @@ bool MainWindow::offerRecovery(const QString& given) {
   adoptProject(Autosave::originalProject(newest), state, true, false);
   Autosave::discard(newest);
   statusBar()->showMessage(tr("Recovered the unsaved work of a session that did not quit"), 10000);
+  sayDropped(newest, dropped);
   return true;
 }
 

@@ -191,27 +191,80 @@ QByteArray projectJson(const ProjectState& state, const QString& projectPath, Pr
     pinned.append(o);
   }
   root.insert("pinned", pinned);
+  // Only what applies to the sweep's model and rule: the sweep form keeps, say, paper 002's axes
+  // while HIMM is chosen, and a project holding them would not reopen.
+  SweepPlan plan = state.sweep;
+  (void)keepApplicable(plan);
   QJsonObject base;
-  for (const auto& [name, value] : state.sweep.base)
-    base.insert(QString::fromStdString(name), value);
+  for (const auto& [name, value] : plan.base) base.insert(QString::fromStdString(name), value);
   auto texts = [](const std::vector<std::string>& list) {
     QJsonArray a;
     for (const std::string& t : list) a.append(QString::fromStdString(t));
     return a;
   };
-  root.insert("sweep", QJsonObject{{"model", QString::fromStdString(state.sweep.model)},
-                                   {"rule", QString::fromStdString(state.sweep.rule)},
-                                   {"pose", poseText(state.sweep.pose)},
-                                   {"grid", QString::fromStdString(state.sweep.parameterGrid)},
-                                   {"axes", texts(state.sweep.axes)},
-                                   {"ties", texts(state.sweep.ties)},
-                                   {"metrics", texts(state.sweep.metrics)},
+  root.insert("sweep", QJsonObject{{"model", QString::fromStdString(plan.model)},
+                                   {"rule", QString::fromStdString(plan.rule)},
+                                   {"pose", poseText(plan.pose)},
+                                   {"grid", QString::fromStdString(plan.parameterGrid)},
+                                   {"axes", texts(plan.axes)},
+                                   {"ties", texts(plan.ties)},
+                                   {"metrics", texts(plan.metrics)},
                                    {"base", base},
-                                   {"use_second_run", state.sweep.useSecondRun}});
+                                   {"use_second_run", plan.useSecondRun}});
   return QJsonDocument(root).toJson(QJsonDocument::Indented);
 }
 
-ProjectState parseProject(const QByteArray& text, const QString& projectPath) {
+QStringList keepApplicable(SweepPlan& plan) {
+  QStringList dropped;
+  ParameterSet declared;
+  try {
+    declared = defaultParameters(plan.model, plan.rule);
+  } catch (const std::exception&) {
+    return dropped;  // an unknown model or rule: parseProject() refuses the file
+  }
+  const QString pair = QString::fromStdString(plan.model + " × " + plan.rule);
+  auto keep = [&](const char* key, std::vector<std::string>& list, auto check) {
+    std::vector<std::string> kept;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      try {
+        check(list[i]);
+        kept.push_back(list[i]);
+      } catch (const std::exception& e) {
+        dropped << QStringLiteral("sweep.%1[%2] '%3': %4")
+                       .arg(QLatin1String(key))
+                       .arg(i)
+                       .arg(QString::fromStdString(list[i]), QString::fromUtf8(e.what()));
+      }
+    }
+    list = std::move(kept);
+  };
+  keep("axes", plan.axes, [&](const std::string& t) { (void)parseSweepAxis(t, declared); });
+  keep("ties", plan.ties, [&](const std::string& t) { (void)parseSweepTie(t, declared); });
+  keep("metrics", plan.metrics, [](const std::string& t) { (void)parseSweepMetrics({t}); });
+  for (auto it = plan.base.begin(); it != plan.base.end();) {
+    QString why;
+    if (!declared.has(it->first)) {
+      why = QStringLiteral("%1 declares no such parameter").arg(pair);
+    } else {
+      try {
+        ParameterSet probe = declared;
+        probe.set(it->first, it->second);
+      } catch (const ParameterError& e) {
+        why = QString::fromUtf8(e.what());
+      }
+    }
+    if (why.isEmpty()) {
+      ++it;
+      continue;
+    }
+    dropped << QStringLiteral("sweep.base.%1: %2").arg(QString::fromStdString(it->first), why);
+    it = plan.base.erase(it);
+  }
+  return dropped;
+}
+
+ProjectState parseProject(const QByteArray& text, const QString& projectPath,
+                          QStringList* dropped) {
   const QString file = QDir::toNativeSeparators(projectPath);
   const Reader r(file);
   QJsonParseError error;
@@ -338,41 +391,34 @@ ProjectState parseProject(const QByteArray& text, const QString& projectPath) {
     if (!second.isUndefined() && !second.isBool())
       r.fail(QStringLiteral("sweep.use_second_run"), QStringLiteral("expected true or false"));
     s.sweep.useSecondRun = second.toBool(true);
-    // The sweep view's choice, in `sonargrid-cli sweep`'s grammar, checked as the CLI checks it.
-    const ParameterSet declared = defaultParameters(s.sweep.model, s.sweep.rule);
-    auto readTexts = [&](const QString& key, std::vector<std::string>& out, auto check) {
+    // The sweep view's choice, in `sonargrid-cli sweep`'s grammar: a part that no longer applies
+    // to the model and rule (checked as the CLI checks it) is left out and named, the rest opens.
+    auto readTexts = [&](const QString& key, std::vector<std::string>& out) {
       if (sweep.value(key).isUndefined()) return;
       const QJsonArray list = r.array(sweep, f, key);
       out.clear();
       for (qsizetype i = 0; i < list.size(); ++i) {
         const QString field = QStringLiteral("sweep.%1[%2]").arg(key).arg(i);
         if (!list[i].isString()) r.fail(field, QStringLiteral("expected a string"));
-        const std::string item = list[i].toString().toStdString();
-        try {
-          check(item);
-        } catch (const std::exception& e) {
-          r.fail(field, QString::fromUtf8(e.what()));
-        }
-        out.push_back(item);
+        out.push_back(list[i].toString().toStdString());
       }
     };
-    readTexts(QStringLiteral("axes"), s.sweep.axes,
-              [&](const std::string& t) { (void)parseSweepAxis(t, declared); });
-    readTexts(QStringLiteral("ties"), s.sweep.ties,
-              [&](const std::string& t) { (void)parseSweepTie(t, declared); });
-    readTexts(QStringLiteral("metrics"), s.sweep.metrics,
-              [](const std::string& t) { (void)parseSweepMetrics({t}); });
+    readTexts(QStringLiteral("axes"), s.sweep.axes);
+    readTexts(QStringLiteral("ties"), s.sweep.ties);
+    readTexts(QStringLiteral("metrics"), s.sweep.metrics);
+    const QStringList left = keepApplicable(s.sweep);
+    if (dropped) *dropped << left;
   }
   return s;
 }
 
-ProjectState readProject(const QString& projectPath) {
+ProjectState readProject(const QString& projectPath, QStringList* dropped) {
   QFile f(projectPath);
   if (!f.open(QIODevice::ReadOnly))
     throw ProjectError(
         (QDir::toNativeSeparators(projectPath) + QStringLiteral(": ") + f.errorString())
             .toStdString());
-  return parseProject(f.readAll(), projectPath);
+  return parseProject(f.readAll(), projectPath, dropped);
 }
 
 void writeProject(const ProjectState& state, const QString& projectPath, ProjectPaths paths) {

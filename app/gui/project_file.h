@@ -5,6 +5,7 @@
 
 #include <QByteArray>
 #include <QString>
+#include <QStringList>
 #include <stdexcept>
 
 #include "project.h"
@@ -34,9 +35,18 @@ QByteArray projectJson(const ProjectState& state, const QString& projectPath,
                        ProjectPaths paths = ProjectPaths::RelativeToFile);
 
 // Reads the text of `projectPath` (relative paths resolved against its folder). A reference named
-// by path is read from that file. Throws ProjectError.
-ProjectState parseProject(const QByteArray& text, const QString& projectPath);
-ProjectState readProject(const QString& projectPath);
+// by path is read from that file. Throws ProjectError for a file it cannot read. Sweep settings
+// that no longer apply to the sweep's model and rule (an axis, tie or base value of a parameter
+// they do not declare or a value out of its range, an unknown metric) are left out, not refused:
+// `dropped`, when given, receives one line for each, naming its field, its text and the reason.
+ProjectState parseProject(const QByteArray& text, const QString& projectPath,
+                          QStringList* dropped = nullptr);
+ProjectState readProject(const QString& projectPath, QStringList* dropped = nullptr);
+
+// Leaves out of `plan` what does not apply to its model and rule (as parseProject() does) and
+// returns one line for each part left out. A project stores only what applies, so that it always
+// reopens.
+QStringList keepApplicable(SweepPlan& plan);
 
 // Atomic (core/sonargrid/base/atomic_file.h). Throws ProjectError naming the path and the reason.
 void writeProject(const ProjectState& state, const QString& projectPath,
