@@ -154,6 +154,15 @@ void Document::markSaved() {
   setDirty(false);
 }
 
+void Document::startNewHistory() {
+  // What was unsaved stays unsaved (settings carry over to the next log, and a session's
+  // command-line settings are edits): only the steps back are gone.
+  const bool modified = isModified();
+  endDrag();
+  undo_->clear();
+  setDirty(modified);
+}
+
 void Document::applySettings(const MapperSettings& settings) {
   state_.settings = settings;
   emit settingsChanged();

@@ -98,6 +98,10 @@ class Document : public QObject {
   bool isModified() const;
   // After a save: the undo stack's clean state, nothing modified outside it.
   void markSaved();
+  // Opening another log makes a new document: its undo history starts empty, so that an undo
+  // never brings back a part of the previous one (its reference over the new log). Unsaved
+  // changes stay unsaved.
+  void startNewHistory();
 
   // Used by the undo commands (document_commands.cpp): set a part and announce it, no undo step.
   void applySettings(const MapperSettings& settings);

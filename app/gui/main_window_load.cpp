@@ -134,18 +134,17 @@ void MainWindow::adoptLog(const QString& path, std::shared_ptr<const Dataset> da
     const QString own = manifest && !manifest->reference.isEmpty() ? manifest->reference
                         : QFileInfo::exists(sibling)               ? sibling
                                                                    : QString();
-    // A reference drawn for another log does not describe this one: it goes, as one undo step
-    // (Edit ▸ Undo keeps it after all), unless it is this log's own, unedited (another run of the
-    // same dataset).
+    // A reference drawn for another log does not describe this one: it goes with the document it
+    // belonged to (unless it is this log's own, unedited: another run of the same dataset). The
+    // new log starts a new undo history below, so no undo brings it back over this log.
     const bool ownAlready = document_->reference() && !document_->referenceModified() &&
                             !own.isEmpty() &&
                             QFileInfo(document_->referencePath()).canonicalFilePath() ==
                                 QFileInfo(own).canonicalFilePath();
     if (document_->reference() && !document_->referenceLog().isEmpty() &&
         document_->referenceLog() != path && !ownAlready) {
-      document_->setReference(std::nullopt, {});
-      statusBar()->showMessage(
-          tr("Reference map closed: it was drawn for another log (Edit ▸ Undo keeps it)"), 15000);
+      document_->applyReference(std::nullopt, {}, false);
+      statusBar()->showMessage(tr("Reference map closed: it was drawn for another log"), 15000);
     }
     if (document_->reference()) document_->setReferenceLog(path);
     // Unless one is loaded, the log's own comes with it: part of opening the log, not an edit.
@@ -158,6 +157,7 @@ void MainWindow::adoptLog(const QString& path, std::shared_ptr<const Dataset> da
         reportError(tr("Cannot open reference map"), QString::fromStdString(e.what()), true);
       }
     }
+    document_->startNewHistory();
   }
   const Dataset& run = *document_->dataset();
   rememberRecent(document_->projectPath().isEmpty() ? path : document_->projectPath());

@@ -219,9 +219,11 @@ class TestDocument : public QObject {
     // The room's reference is closed; the office dataset's manifest (datasets/office/dataset.json)
     // names its own, which comes along instead.
     QVERIFY(window.document()->referencePath() != roomReference);
-    window.document()->undoStack()->undo();  // the user keeps the room's after all
     QVERIFY(window.document()->reference().has_value());
-    QCOMPARE(window.document()->reference()->objects.size(), objects);
+    QVERIFY(window.document()->reference()->objects.size() != objects);
+    // The office log is a new document with its own history (issue 49: an undo put the room's
+    // walls over the next log): nothing to undo brings the room's reference back.
+    QVERIFY(!window.document()->undoStack()->canUndo());
     QVERIFY(window.waitForMap(60000));
   }
 
