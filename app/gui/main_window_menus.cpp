@@ -97,7 +97,11 @@ void MainWindow::createActions() {
   undoAction_ = document_->undoStack()->createUndoAction(this, tr("&Undo"));
   undoAction_->setShortcut(QKeySequence::Undo);
   redoAction_ = document_->undoStack()->createRedoAction(this, tr("&Redo"));
-  redoAction_->setShortcut(QKeySequence::Redo);
+  // Redo's platform keys (Ctrl+Shift+Z on X11) and Ctrl+Y, which the user guide names.
+  QList<QKeySequence> redoKeys = QKeySequence::keyBindings(QKeySequence::Redo);
+  if (!redoKeys.contains(QKeySequence(Qt::CTRL | Qt::Key_Y)))
+    redoKeys << QKeySequence(Qt::CTRL | Qt::Key_Y);
+  redoAction_->setShortcuts(redoKeys);
   cellSizeAction_ = new QAction(tr("&Cell Size…"), this);
   connect(cellSizeAction_, &QAction::triggered, this, &MainWindow::askCellSize);
 
@@ -219,6 +223,7 @@ void MainWindow::createMenus() {
   QAction* tour = help->addAction(tr("Sonar Models in &5 Minutes"));
   tour->setObjectName(QStringLiteral("tourAction"));
   connect(tour, &QAction::triggered, this, [this] {
+    if (!maybeSave()) return;  // the tour opens a log of its own
     auto* dialog = new TourDialog(this);
     dialog->setAttribute(Qt::WA_DeleteOnClose);
     dialog->show();
@@ -330,14 +335,14 @@ void MainWindow::openLogDialog() {
       this, tr("Open Log"), dir,
       tr("Sonar logs (*.sglog *.clf *.carmen *.log *.playerlog *.csv *.txt *.tsv);;"
          "All files (*)"));
-  if (!path.isEmpty()) openLog(path);
+  if (!path.isEmpty() && maybeSave()) openLog(path);
 }
 
 void MainWindow::importCsvDialog() {
   const QString dir = QSettings().value("files/lastDirectory", QDir::homePath()).toString();
   const QString path = QFileDialog::getOpenFileName(
       this, tr("Import CSV"), dir, tr("CSV and text logs (*.csv *.txt *.tsv);;All files (*)"));
-  if (!path.isEmpty()) importCsv(path);
+  if (!path.isEmpty() && maybeSave()) importCsv(path);
 }
 
 void MainWindow::openReferenceDialog() {
@@ -352,10 +357,12 @@ void MainWindow::openProjectDialog() {
   const QString dir = QSettings().value("files/lastDirectory", QDir::homePath()).toString();
   const QString path = QFileDialog::getOpenFileName(this, tr("Open Project"), dir,
                                                     tr("SonarGrid projects (*.sgproj)"));
-  if (!path.isEmpty()) openProject(path);
+  if (!path.isEmpty() && maybeSave()) openProject(path);
 }
 
 void MainWindow::openAny(const QString& path) {
+  // A log or a project replaces the document: ask first. A reference is an undoable edit of it.
+  if (!isReferenceFile(path) && !maybeSave()) return;
   if (QFileInfo(path).suffix().compare(QLatin1String(kProjectSuffix), Qt::CaseInsensitive) == 0)
     openProject(path);
   else if (isReferenceFile(path))
@@ -385,7 +392,7 @@ void MainWindow::openExample() {
     return;
   }
   ExampleChooser chooser(std::move(datasets), this);
-  if (chooser.exec() == QDialog::Accepted && !chooser.chosenLog().isEmpty())
+  if (chooser.exec() == QDialog::Accepted && !chooser.chosenLog().isEmpty() && maybeSave())
     openLog(chooser.chosenLog());
 }
 
