@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 
 #include "sonargrid/presets.h"
 
@@ -176,6 +177,15 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   choosers->addRow(tr("Update &rule:"), rule_);
   choosers->addRow(tr("Paper &preset:"), preset_);
 
+  // The model's caveat (sensorModelCaveat()): why its maps look as they do, where that is poor.
+  caveat_ = new QLabel(this);
+  caveat_->setObjectName(QStringLiteral("modelCaveat"));
+  caveat_->setWordWrap(true);
+  caveat_->setVisible(false);
+  QFont small = caveat_->font();
+  small.setItalic(true);
+  caveat_->setFont(small);
+
   status_ = new QLabel(this);
   status_->setObjectName(QStringLiteral("status"));
   status_->setWordWrap(true);
@@ -204,6 +214,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
 
   auto* layout = new QVBoxLayout(this);
   layout->addLayout(choosers);
+  layout->addWidget(caveat_);
   layout->addWidget(status_);
   layout->addWidget(scroll_, 1);
   layout->addLayout(bottom);
@@ -400,6 +411,9 @@ void ParameterPanel::rebuildRows() {
   rows_.clear();
   const ModelInfo& model = sensorModelInfo(settings_.model);
   const RuleInfo& rule = updateRuleInfo(settings_.rule);
+  const QString caveat = qs(sensorModelCaveat(settings_.model));
+  caveat_->setText(caveat);
+  caveat_->setVisible(!caveat.isEmpty());
   // Short headings (the choosers above show the titles): a long one would widen the dock.
   addRows(model.parameters, tr("Model (%1)").arg(qs(model.name)));
   addRows(rule.parameters, tr("Rule (%1)").arg(qs(rule.name)));
@@ -460,6 +474,16 @@ void ParameterPanel::addRows(const std::vector<ParameterSpec>& specs, const QStr
     row.spin->setKeyboardTracking(false);  // typing "0.15" re-maps once, on Enter
     row.spin->setToolTip(tip);
     row.spin->setAccessibleName(fullName(spec));
+    // A parameter the rule makes no use of (update_rule.h) is shown disabled, with the reason:
+    // a slider that changes nothing would teach the wrong lesson.
+    const std::string unused = unusedParameterReason(settings_.model, settings_.rule, spec.name);
+    if (!unused.empty()) {
+      const QString why = tr("Not used by this rule: %1.").arg(qs(unused));
+      for (QWidget* w : std::initializer_list<QWidget*>{label, row.slider, row.spin}) {
+        w->setEnabled(false);
+        w->setToolTip(why + QStringLiteral("\n\n") + tip);
+      }
+    }
     label->setBuddy(row.spin);
     grid->addWidget(label, line, 0);
     grid->addWidget(row.slider, line, 1);
@@ -518,7 +542,7 @@ void ParameterPanel::commit(const std::string& name, double value) {
     const QSignalBlocker block(preset_);
     preset_->setCurrentIndex(0);
   }
-  showStatus({});  // a new value: the last note is history
+  showStatus({}, /*keepRoom=*/true);  // a new value: the last note is history
   changed();
 }
 
@@ -526,7 +550,16 @@ void ParameterPanel::changed() {
   emit settingsChanged(settings_);
 }
 
-void ParameterPanel::showStatus(const QString& text) {
+void ParameterPanel::showStatus(const QString& text, bool keepRoom) {
+  if (text.isEmpty() && keepRoom && status_->isVisible()) {
+    // The note goes but its room stays, so that the sliders below do not jump under the pointer
+    // of a drag that is under way (issue 49: about 90 px). Another model or rule, or the next
+    // note, gives the room back.
+    status_->setMinimumHeight(status_->height());
+    status_->clear();
+    return;
+  }
+  status_->setMinimumHeight(0);
   status_->setText(text);
   status_->setVisible(!text.isEmpty());
 }

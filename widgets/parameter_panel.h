@@ -80,7 +80,8 @@ class ParameterPanel : public QWidget {
   void showValues();
   void commit(const std::string& name, double value);
   void changed();
-  void showStatus(const QString& text);
+  // The note under the choosers; with `keepRoom`, clearing a shown note keeps its height.
+  void showStatus(const QString& text, bool keepRoom = false);
   QString ruleChangeNote(const std::string& fromRule, const std::string& model,
                          const std::string& toRule) const;
 
@@ -89,6 +90,7 @@ class ParameterPanel : public QWidget {
   QComboBox* rule_ = nullptr;
   QComboBox* preset_ = nullptr;
   QPushButton* reset_ = nullptr;
+  QLabel* caveat_ = nullptr;
   QLabel* status_ = nullptr;
   QLabel* remapTime_ = nullptr;
   QWidget* rowsHost_ = nullptr;

@@ -78,6 +78,20 @@ std::unique_ptr<SensorModel> makeSensorModel(const std::string& name) {
   return m;
 }
 
+std::string sensorModelCaveat(const std::string& name) {
+  if (name == "murphy")
+    return "As paper 002 prints it (eqs 1-4): before the echo, cells near the cone's edges far out "
+           "turn occupied, and echo cells at its corners free, the faults its section 3.2 names; "
+           "expect occupied wedges.";
+  if (name == "parameterized")
+    return "P3 is in metres: Figure 6's P3 = 1.0 (the sensor's range units) draws a 2 m occupied "
+           "band here; paper 002 Table 1's sets use 0.25 to 1.5.";
+  if (name == "hpf")
+    return "Writes the whole cone: walls come out a beam wide (paper 000 Table 1: IOP about 220 mm "
+           "against HIMM's 86).";
+  return {};
+}
+
 const ModelInfo& sensorModelInfo(const std::string& name) {
   if (name == "hpf") return hpfModelInfo();
   if (name == "konolige") return konoligeModelInfo();

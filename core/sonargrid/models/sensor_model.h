@@ -114,4 +114,11 @@ std::vector<std::string> sensorModelNames();
 std::unique_ptr<SensorModel> makeSensorModel(const std::string& name);  // nullptr when unknown
 const ModelInfo& sensorModelInfo(const std::string& name);              // throws when unknown
 
+// What a user should expect of the model's maps where they look poor by design, in one line (the
+// parameter panel shows it under the choosers; docs/models.md says the same), or "" for a model
+// without such a caveat. Measured on the bundled logs (issue 49): Murphy's model as printed fills
+// the room with occupied wedges, and the cone models draw echoes of multipath as arcs beyond the
+// walls.
+std::string sensorModelCaveat(const std::string& name);
+
 }  // namespace sg

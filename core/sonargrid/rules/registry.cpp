@@ -71,6 +71,16 @@ Compatibility compatibility(const std::string& model, const std::string& rule) {
   return {};
 }
 
+std::string unusedParameterReason(const std::string& model, const std::string& rule,
+                                  const std::string& parameter) {
+  if (model == "himm" && rule == "himm" && (parameter == "p_hit" || parameter == "p_miss")) {
+    return "the himm rule adds I+ to the echo cell and subtracts I- before it whatever the "
+           "probabilities (paper 000 §2.2): it only needs p_hit above 0.5 and p_miss below, which "
+           "their ranges give; the probabilistic rules read them";
+  }
+  return {};
+}
+
 void UpdateRule::applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const {
   if (needsTotals()) {
     // Every run deferred as it is, its values copied after those deferred before (no room past

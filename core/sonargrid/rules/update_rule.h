@@ -286,4 +286,11 @@ struct Compatibility {
 };
 Compatibility compatibility(const std::string& model, const std::string& rule);
 
+// Why `rule` makes no use of `model`'s parameter `parameter` (the parameter panel disables its
+// control and shows this as the reason), or an empty string when the pair uses it. For now one
+// pair has such parameters: HIMM × HIMM, whose increments alone set the cells, so p_hit and
+// p_miss only decide on which side of 0.5 a cell's evidence lies, which their ranges fix.
+std::string unusedParameterReason(const std::string& model, const std::string& rule,
+                                  const std::string& parameter);
+
 }  // namespace sg
