@@ -13,8 +13,10 @@
 
 #include "beam_model_view.h"
 #include "datasets_location.h"
+#include "document.h"
 #include "main_window.h"
 #include "parameter_panel.h"
+#include "reference_editor.h"
 #include "sonargrid/presets.h"
 
 namespace sg::app {
@@ -27,6 +29,26 @@ void usePreset(MainWindow& w, const char* name) {
   MapperSettings s = applyPreset(*preset);
   s.pose = w.mapperSettings().pose;
   w.setMapperSettings(s, /*ruleNamed=*/true);  // a preset names its rule
+}
+
+// The reference map as step 1 describes it: drawn (the Reference overlay on) and not in edit mode,
+// where the editor draws it blue with corner handles.
+void showReference(MainWindow& w) {
+  Document& d = *w.document();
+  if (!d.overlays().testFlag(ui::Overlay::Reference))
+    d.setOverlays(d.overlays() | ui::Overlay::Reference);
+  if (auto* editor = w.findChild<ui::ReferenceEditor*>())
+    if (editor->editModeAction()->isChecked()) editor->editModeAction()->trigger();
+}
+
+// Arafat et al.'s parameterized model at Table 1's minimum-VSDNS set (P3 = 0.25 m, P5 = 6°) with
+// P5 = `p5`. Figure 6's set has P3 = 1.0 in the sensor's range units (feet in Murphy's examples),
+// which as metres draws a 2 m occupied band around every echo: no wall shows (issue 49).
+void useParameterized(MainWindow& w, double p5) {
+  usePreset(w, "paper002-table1-min-vsdns");
+  MapperSettings s = w.mapperSettings();
+  s.parameters.set("p5", p5);
+  w.setMapperSettings(s);
 }
 
 void raiseDock(MainWindow& w, const char* objectName) {
@@ -55,10 +77,11 @@ TourDialog::TourDialog(MainWindow* window)
        tr("This is run 1 of the obstacle course of Raschke & Borenstein (1990): a robot with 24 "
           "sonars drives among boxes, partitions and a thin pole. The green lines are the room as "
           "it really is (the reference map); the coloured cells are what the sonars made of it. "
-          "Blue is free, dark red occupied, khaki never observed."),
+          "White to blue is free, dark red occupied, khaki never observed."),
        [log](MainWindow& w) {
          if (QFileInfo::exists(log) && w.logPath() != log) w.openLog(log);
          usePreset(w, "paper000-himm");
+         showReference(w);
        }},
       {tr("HIMM: one cell per echo"),
        tr("The map is built with HIMM, the histogram method: each echo adds 3 to the one cell on "
@@ -75,27 +98,27 @@ TourDialog::TourDialog(MainWindow* window)
        tr("The Beam Model dock draws what one reading writes. With the parameterized model of "
           "Arafat et al. it shows Region I around the range s (occupied), Region II before it "
           "(free) and Region III beyond it (no update). The top picture is the cone seen from "
-          "above, the middle one the values along the axis."),
+          "above, the middle one the values along the axis. Its cone is 15° wide on each side of "
+          "the axis, as in the paper's Figure 6."),
        [](MainWindow& w) {
-         usePreset(w, "paper002-fig6-parameterized");
+         useParameterized(w, 15.0);
          raiseDock(w, "beamModelDock");
        }},
       {tr("One slider: the beam's width"),
-       tr("P5 is half the beam's width. The paper's Figure 6 uses 15°; its best maps (Table 1) use "
-          "about 6°. The tour has set P5 to 6°: the cone in the beam view narrows and the map's "
-          "walls sharpen. Drag the P5 slider in the Parameters dock yourself and watch both."),
+       tr("P5 is half the beam's width. The paper's Figure 6 uses 15°; the set of its Table 1 with "
+          "the lowest VSDNS uses 6°. The tour has set P5 to 6°: the cone in the beam view narrows, "
+          "the occupied arcs thin and the map's walls sharpen (its Index of Performance falls). "
+          "Drag the P5 slider in the Parameters dock yourself and watch both."),
        [](MainWindow& w) {
-         usePreset(w, "paper002-fig6-parameterized");
-         MapperSettings s = w.mapperSettings();
-         s.parameters.set("p5", 6.0);
-         w.setMapperSettings(s);
+         useParameterized(w, 6.0);
          raiseDock(w, "parametersDock");
          raiseDock(w, "beamModelDock");
          if (QSlider* slider = w.parameterPanel()->sliderFor(QStringLiteral("p5")))
            slider->setFocus();
        }},
       {tr("Your turn"),
-       tr("Every step can be undone (Edit ▸ Undo). File ▸ Open Example opens the other datasets; "
+       tr("Every change of model or parameter can be undone (Edit ▸ Undo). File ▸ Open Example "
+          "opens the other datasets; "
           "the Paper presets in the Parameters dock set each paper's values; Help ▸ User Guide "
           "explains the rest."),
        [](MainWindow&) {}},

@@ -23,6 +23,7 @@
 #include "grid_view.h"
 #include "main_window.h"
 #include "parameter_panel.h"
+#include "sonargrid/metrics/reference_score.h"
 #include "sonargrid/presets.h"
 #include "tour_dialog.h"
 
@@ -47,6 +48,18 @@ QAction* actionNamed(const QWidget& w, const QString& text) {
   for (QAction* a : w.findChildren<QAction*>())
     if (a->text() == text) return a;
   return nullptr;
+}
+
+// One undoable edit of the document's settings, whatever the window chose (it remembers the last
+// settings): HPF × addition with an ε other than its own.
+void editSettings(MainWindow& w) {
+  MapperSettings s = w.document()->mapperSettings();
+  const bool was023 = s.model == "hpf" && s.parameters.get("epsilon") == 0.23;
+  s.model = "hpf";
+  s.rule = "addition";
+  s.parameters = defaultParameters("hpf", "addition");
+  s.parameters.set("epsilon", was023 ? 0.31 : 0.23);
+  w.document()->setMapperSettings(s);
 }
 
 }  // namespace
@@ -171,14 +184,7 @@ class TestFirstRun : public QObject {
     // made before stays as it was.
     MainWindow w(ui::GridView::Backend::Raster);
     QVERIFY(w.openLog(dataset("room/room.sglog"), true));
-    // An edit whatever the window chose (it remembers the last settings): ε other than its own.
-    MapperSettings s = w.document()->mapperSettings();
-    const bool was023 = s.model == "hpf" && s.parameters.get("epsilon") == 0.23;
-    s.model = "hpf";
-    s.rule = "addition";
-    s.parameters = defaultParameters("hpf", "addition");
-    s.parameters.set("epsilon", was023 ? 0.31 : 0.23);
-    w.document()->setMapperSettings(s);
+    editSettings(w);
     QVERIFY(w.document()->undoStack()->canUndo());
     QVERIFY(w.openLog(dataset("raschke-multi/in-motion-02.sglog"), true));
     QVERIFY(!w.document()->undoStack()->canUndo());
@@ -197,14 +203,7 @@ class TestFirstRun : public QObject {
     MainWindow w(ui::GridView::Backend::Raster);
     QVERIFY(w.openLog(dataset("raschke-multi/in-motion-02.sglog"), true));
     QVERIFY(w.openLog(dataset("room/room.sglog"), true));
-    // An edit whatever the window chose (it remembers the last settings): ε other than its own.
-    MapperSettings s = w.document()->mapperSettings();
-    const bool was023 = s.model == "hpf" && s.parameters.get("epsilon") == 0.23;
-    s.model = "hpf";
-    s.rule = "addition";
-    s.parameters = defaultParameters("hpf", "addition");
-    s.parameters.set("epsilon", was023 ? 0.31 : 0.23);
-    w.document()->setMapperSettings(s);
+    editSettings(w);
     QVERIFY(w.document()->isModified());
     QAction* tour = w.findChild<QAction*>(QStringLiteral("tourAction"));
     QVERIFY(tour);
@@ -332,6 +331,60 @@ class TestFirstRun : public QObject {
     tour.next();  // past the end: stays
     QCOMPARE(tour.step(), tour.stepCount() - 1);
     QVERIFY(w.waitForMap(120000));
+  }
+
+  void tourClaimsHold() {
+    // Issue 49 item 5: every step's claim is checked with a metric of the map it shows, scored
+    // against the reference the window has (raschke-multi's world.json), with the core's IOP
+    // (paper 000 eq 9) and its filled cells. The tour's steps 4-6 showed Figure 6's set, whose
+    // P3 = 1.0 as metres fills the room (IOP 947 mm, 37 485 of 57 250 cells filled) while the
+    // text said the walls sharpen; step 1 said "green" while the reference showed blue, in edit
+    // mode.
+    MainWindow w(ui::GridView::Backend::Raster);
+    TourDialog tour(&w);
+    QVERIFY(w.waitForLoad(120000));
+    // Step 1: the reference is drawn (its overlay, green) and not in the editor's edit mode.
+    QVERIFY(w.document()->overlays().testFlag(ui::Overlay::Reference));
+    QVERIFY(!w.gridView()->tool());
+    QVERIFY(tour.findChild<QLabel*>("tourText")->text().contains("green"));
+    struct Shown {
+      double iop;
+      std::size_t filled;
+    };
+    auto shown = [&w]() -> Shown {
+      if (!w.waitForMap(120000)) return {-1.0, 0};
+      const auto map = w.gridView()->map();
+      const ReferenceScore score = scoreAgainstReference(*map, *w.document()->reference());
+      return {score.value(Metric::Iop).value_or(-1.0), map->filledCount()};
+    };
+    tour.next();  // step 2: HIMM, "walls come out thin and sharp"
+    const Shown himm = shown();
+    tour.next();  // step 3: HPF, "walls are thicker and blurred"
+    const Shown hpf = shown();
+    QVERIFY2(hpf.iop > himm.iop && hpf.filled > himm.filled,
+             qPrintable(QStringLiteral("HIMM %1 mm, %2 cells; HPF %3 mm, %4 cells")
+                            .arg(himm.iop)
+                            .arg(himm.filled)
+                            .arg(hpf.iop)
+                            .arg(hpf.filled)));
+    tour.next();  // step 4: the parameterized model with P5 = 15°
+    QCOMPARE(w.mapperSettings().parameters.get("p5"), 15.0);
+    const Shown wide = shown();
+    tour.next();  // step 5: P5 = 6°, "the occupied arcs thin and the walls sharpen (IOP falls)"
+    const Shown narrow = shown();
+    QVERIFY2(narrow.iop < wide.iop && narrow.filled < wide.filled,
+             qPrintable(QStringLiteral("P5 15: %1 mm, %2 cells; P5 6: %3 mm, %4 cells")
+                            .arg(wide.iop)
+                            .arg(wide.filled)
+                            .arg(narrow.iop)
+                            .arg(narrow.filled)));
+    // Neither map is the room filled: under half the grid's cells (Figure 6's set filled 65 %).
+    const std::size_t cells = w.gridView()->map()->spec.cellCount();
+    QVERIFY2(wide.filled < cells / 2, qPrintable(QString::number(wide.filled)));
+    tour.next();  // step 6: "every change of model or parameter can be undone"
+    QVERIFY(w.document()->undoStack()->canUndo());
+    w.document()->undoStack()->undo();
+    QCOMPARE(w.mapperSettings().parameters.get("p5"), 15.0);
   }
 };
 
