@@ -206,7 +206,12 @@ std::shared_ptr<SweepJob> SweepView::makeJob() const {
   const SweepChoice choice = form_->choice();
   auto job = std::make_shared<SweepJob>();
   job->run = inputs_.run;
-  job->metrics = parseSweepMetrics(choice.metrics);
+  std::vector<std::string> metrics = choice.metrics;
+  // IOP prefers sparse maps (a map of a few sure cells scores well): the table shows the recall
+  // of the occupied cells beside it, so that a nearly empty "best" map shows as one (issue 49).
+  if (std::find(metrics.begin(), metrics.end(), "iop") != metrics.end())
+    metrics.push_back("recall");
+  job->metrics = parseSweepMetrics(metrics);
   if (job->metrics.empty())
     throw std::invalid_argument(tr("Choose at least one metric.").toStdString());
   const SetMeasures measures = measuresOf(job->metrics);
@@ -408,6 +413,16 @@ std::optional<OptimalSet> SweepView::chooseBest() const {
       model_->columnValues(static_cast<std::size_t>(c));
   if (std::none_of(values.begin(), values.end(), [](const auto& v) { return v.has_value(); }))
     return std::nullopt;
+  // A metric that is the same for every set cannot tell them apart (VSDNS of HIMM's two
+  // constant model values, say): said as such, not a "best" set.
+  const auto first =
+      std::find_if(values.begin(), values.end(), [](const auto& v) { return v.has_value(); });
+  if (values.size() > 1 &&
+      std::all_of(values.begin(), values.end(), [&](const auto& v) { return !v || *v == **first; }))
+    throw std::invalid_argument(tr("%1 is the same for every set (%2): it cannot tell them apart")
+                                    .arg(plotColumn_->currentText())
+                                    .arg(**first, 0, 'g', 6)
+                                    .toStdString());
   const auto rule = static_cast<BestRule>(bestRule_->currentData().toInt());
   switch (rule) {
     case BestRule::LowestBin:

@@ -7,6 +7,7 @@
 #include <QMenuBar>
 #include <QStatusBar>
 #include <memory>
+#include <string>
 
 #include "document.h"
 #include "main_window.h"
@@ -26,23 +27,45 @@ ui::SweepInputs inputsOf(const Document& d) {
   return in;
 }
 
-ui::SweepChoice choiceOf(const SweepPlan& plan) {
-  return {plan.axes, plan.ties, plan.metrics};
+// The choice the view shows: the document's plan when it was made for the model now chosen, else
+// a start that suits that model (issue 49: HIMM got paper 002's tie "p1=1-p4" and could not
+// sweep). Paper 002's grid, tie and VSDNS belong to the parameterized model; for the others no
+// parameter is ticked. HIMM's model values are two constants, so VSDNS (their spread) is the
+// same for every HIMM set: it starts with IOP against the reference, or derivative noise.
+ui::SweepChoice choiceFor(const Document& d) {
+  const SweepPlan& plan = d.sweep();
+  const std::string& model = d.mapperSettings().model;
+  if (plan.model == model) return {plan.axes, plan.ties, plan.metrics};
+  if (model == "parameterized") {
+    const SweepPlan paper002;
+    return {paper002.axes, paper002.ties, paper002.metrics};
+  }
+  if (model == "himm")
+    return {{}, {}, {d.reference() ? std::string("iop") : std::string("derivative")}};
+  return {{}, {}, {"vsdns"}};
 }
 
 }  // namespace
 
 void connectSweepView(ui::SweepView* view, Document* document) {
   view->setInputs(inputsOf(*document));
-  view->setChoice(choiceOf(document->sweep()));
+  view->setChoice(choiceFor(*document));
   auto showInputs = [view, document] { view->setInputs(inputsOf(*document)); };
-  for (auto signal : {&Document::logChanged, &Document::secondLogChanged,
-                      &Document::referenceChanged, &Document::settingsChanged})
+  for (auto signal :
+       {&Document::logChanged, &Document::secondLogChanged, &Document::referenceChanged})
     QObject::connect(document, signal, view, showInputs);
   QObject::connect(document, &Document::cellSizeChanged, view, showInputs);
+  // Another model: the choice follows it (a slider of the same model leaves the form alone).
+  auto shownModel = std::make_shared<std::string>(document->mapperSettings().model);
+  QObject::connect(document, &Document::settingsChanged, view, [view, document, shownModel] {
+    view->setInputs(inputsOf(*document));
+    if (document->mapperSettings().model == *shownModel) return;
+    *shownModel = document->mapperSettings().model;
+    view->setChoice(choiceFor(*document));
+  });
   // Undo, redo and opening a project show the document's choice.
   QObject::connect(document, &Document::sweepChanged, view,
-                   [view, document] { view->setChoice(choiceOf(document->sweep())); });
+                   [view, document] { view->setChoice(choiceFor(*document)); });
   // An edit of the choice is an undoable edit of the document's sweep settings, which also
   // records what it sweeps over (model, rule, pose and the base values).
   QObject::connect(view, &ui::SweepView::choiceEdited, document,
