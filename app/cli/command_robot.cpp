@@ -92,7 +92,10 @@ int runRobot(Arguments& args) {
   std::vector<Position> waypoints;
   try {
     map = readReferenceJson(worldPath);
-    if (routeFile) waypoints = readRouteFile(*routeFile);
+    if (routeFile)
+      waypoints = readRouteFile(*routeFile);
+    else if (!teleop)
+      waypoints = worldRoute(worldPath);  // the world's own route.txt, if it has one
   } catch (const LogError& e) {
     throw InputError(e.what());
   }

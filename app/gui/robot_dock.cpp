@@ -412,8 +412,12 @@ bool RobotDock::startVirtualRobot(const VirtualRobotHost::Options& o) {
     say(error);
     return false;
   }
-  // Its world is the truth to score against: shown unless the window already has a reference.
-  if (!window_->hasReference()) window_->openReference(o.world, true);
+  // Its world is the truth to score against: the live map is scored against it, not against a
+  // reference of another place that the window had open (issue 49). Opening it is one undo step.
+  const QString shown = window_->document()->referencePath();
+  if (!window_->hasReference() || window_->document()->referenceModified() ||
+      QFileInfo(shown).canonicalFilePath() != QFileInfo(o.world).canonicalFilePath())
+    window_->openReference(o.world, true);
   if (!o.route) teleopAction_->setChecked(true);
   updateActions();
   return true;

@@ -9,6 +9,7 @@
 #include "sonargrid/arcos/virtual_route.h"
 #include "sonargrid/live/arcos_server.h"
 #include "sonargrid/reference/reference_json.h"
+#include "sonargrid/sim/route.h"
 
 namespace sg::app {
 
@@ -36,8 +37,11 @@ bool VirtualRobotHost::start(const Options& options, QString* error) {
     const ReferenceMap map = readReferenceJson(path);
     SimulationSettings sim;
     if (options.route) sim.route = *options.route;
-    const arcos::VirtualRoute route =
-        arcos::planVirtualRoute(map, settings.robot.ring, sim, {}, !options.route);
+    // The world's own route (route.txt beside it) where it has one: the route planned from the
+    // world's bounds alone crosses the bundled worlds' furniture (issue 49).
+    const arcos::VirtualRoute route = arcos::planVirtualRoute(
+        map, settings.robot.ring, sim, options.route ? worldRoute(path) : std::vector<Position>{},
+        !options.route);
     robot_ =
         std::make_unique<arcos::VirtualRobot>(sonarWorld(map), route.start, route.plan, settings);
   } catch (const std::exception& e) {

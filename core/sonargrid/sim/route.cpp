@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <stdexcept>
 
@@ -148,6 +149,13 @@ std::vector<Position> parseRouteText(std::string_view text, const std::string& d
 
 std::vector<Position> readRouteFile(const std::string& path) {
   return parseRouteText(file_text::readFileBytes(path), path);
+}
+
+std::vector<Position> worldRoute(const std::string& worldPath) {
+  const std::filesystem::path route = std::filesystem::path(worldPath).parent_path() / "route.txt";
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(route, error)) return {};
+  return readRouteFile(route.string());
 }
 
 std::optional<Clearance> closestApproach(const SonarWorld& world, const Trajectory& path,

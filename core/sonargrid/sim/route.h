@@ -41,6 +41,12 @@ std::vector<double> stopDistances(double length, int stops);
 std::vector<Position> parseRouteText(std::string_view text, const std::string& displayName);
 std::vector<Position> readRouteFile(const std::string& path);
 
+// The route drawn for a world: the route file `route.txt` beside the world file, as every bundled
+// dataset keeps one (datasets/README.md), read with readRouteFile(); empty when there is none. A
+// world's own route goes around its obstacles, where the route a RouteKind plans from the world's
+// bounds alone may cross them (the virtual robot's default, issue 49).
+std::vector<Position> worldRoute(const std::string& worldPath);
+
 // The closest the robot (a disc of `radius` metres) comes to a surface along the trajectory,
 // sampled every `step` metres and at each turn: where and how close. Empty for an empty world.
 struct Clearance {
