@@ -9,13 +9,16 @@
 //
 // Set SONARGRID_ROBOT_SCREENSHOT=FILE.png to save the window during the live session.
 
+#include <QFileInfo>
 #include <QMenu>
+#include <QUndoStack>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QtTest>
 #include <cstring>
 
+#include "document.h"
 #include "grid_view.h"
 #include "main_window.h"
 #include "remap_controller.h"
@@ -151,6 +154,30 @@ class TestRobotSession : public QObject {
           source->size(), readingCount(received), static_cast<int>(merged.count()),
           map->filledCount(), map->spec.width, map->spec.height);
     session->stopVirtualRobot();
+  }
+
+  void theRobotsWorldBecomesTheReference() {
+    // Issue 49 item 10: with the room's reference open, the virtual robot in raschke-single's
+    // world was scored against the room's walls. Its world becomes the reference (one undo step),
+    // and its default route (the world's route.txt) starts without a clearance error.
+    app::MainWindow window(ui::GridView::Backend::Raster);
+    QVERIFY(window.openReference(SONARGRID_DATASETS "/room/room.json", true));
+    auto* dock = window.findChild<app::RobotDock*>();
+    QVERIFY(dock);
+    dock->setWorld(virtualRobot().world);
+    app::VirtualRobotHost::Options options = dock->virtualRobotOptions();
+    options.timeScale = virtualRobot().timeScale;
+    options.seed = virtualRobot().seed;
+    const int steps = window.document()->undoStack()->count();
+    QVERIFY(dock->startVirtualRobot(options));
+    QCOMPARE(QFileInfo(window.document()->referencePath()).canonicalFilePath(),
+             QFileInfo(virtualRobot().world).canonicalFilePath());
+    QCOMPARE(window.document()->undoStack()->count(), steps + 1);
+    // Started again in the same world: the reference is left as it is.
+    dock->session()->stopVirtualRobot();
+    QVERIFY(dock->startVirtualRobot(options));
+    QCOMPARE(window.document()->undoStack()->count(), steps + 1);
+    dock->session()->stopVirtualRobot();
   }
 
   void disconnectAndReconnectKeepTheMap() {
