@@ -11,10 +11,10 @@
 
 #include <QFileInfo>
 #include <QMenu>
-#include <QUndoStack>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTemporaryDir>
+#include <QUndoStack>
 #include <QtTest>
 #include <cstring>
 
