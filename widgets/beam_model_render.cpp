@@ -287,6 +287,27 @@ BeamLayout beamLayout(QSize size, int columns) {
   const int barWidth = std::max(7 * fp, size.width() / 11);
   const int columnWidth = (size.width() - barWidth) / columns;
   const int titleHeight = 4 * fp;  // a title and its settings, each on up to two lines
+  // Two scenes side by side while each column is wide enough to read; in a narrower view (the
+  // Beam Model dock at its default width) they stack one above the other, each the full width
+  // (issue 49: compare mode could not be read at the dock's width).
+  l.stacked = columns > 1 && columnWidth < kMinBeamColumnWidth;
+  if (l.stacked) {
+    const int width = size.width() - barWidth;
+    const int band = size.height() / columns;
+    const int title = std::min(titleHeight, band / 4);
+    const int rest = band - title;
+    const int mapHeight = rest * 45 / 100, profileHeight = rest * 28 / 100;
+    for (int c = 0; c < columns; ++c) {
+      const int y = c * band;
+      l.title.emplace_back(0, y, width, title);
+      l.map.emplace_back(0, y + title, width, mapHeight);
+      l.profile.emplace_back(0, y + title + mapHeight, width, profileHeight);
+      l.surface.emplace_back(0, y + title + mapHeight + profileHeight, width,
+                             rest - mapHeight - profileHeight);
+    }
+    l.colourBar = QRect(width, title, barWidth, size.height() - 2 * title);
+    return l;
+  }
   const int rest = size.height() - titleHeight;
   const int mapHeight = rest * 40 / 100, profileHeight = rest * 26 / 100;
   for (int c = 0; c < columns; ++c) {
@@ -691,7 +712,10 @@ QImage renderBeamModel(const std::vector<BeamScene>& scenes, QSize size) {
     drawSurface(painter, scene, extent, layout.surface[c]);
     if (c > 0) {
       painter.setPen(QPen(QColor(200, 200, 200), 1));
-      painter.drawLine(title.topLeft(), layout.surface[c].bottomLeft());
+      if (layout.stacked)
+        painter.drawLine(title.topLeft(), title.topRight());
+      else
+        painter.drawLine(title.topLeft(), layout.surface[c].bottomLeft());
     }
   }
   drawColourBar(painter, layout.colourBar);

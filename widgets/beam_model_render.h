@@ -68,12 +68,16 @@ std::vector<AxialSpan> axialSpans(const BeamScene& scene, double xMax);
 
 // Where each panel goes in an image of `size` holding `columns` models side by side.
 struct BeamLayout {
-  std::vector<QRect> title, map, profile, surface;  // one per column
+  std::vector<QRect> title, map, profile, surface;  // one per scene
   QRect colourBar;
+  bool stacked = false;  // the scenes one above the other rather than side by side
 };
+// The narrowest column that two scenes side by side may get; below it they stack.
+inline constexpr int kMinBeamColumnWidth = 220;
 BeamLayout beamLayout(QSize size, int columns);
 
-// The whole picture: one column per scene (one or two), a shared colour bar.
+// The whole picture: one column per scene (one or two; stacked rows when the columns would be
+// narrower than kMinBeamColumnWidth), a shared colour bar.
 QImage renderBeamModel(const std::vector<BeamScene>& scenes, QSize size);
 
 // The panels, each inside `area`.

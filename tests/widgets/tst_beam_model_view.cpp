@@ -67,6 +67,7 @@ class TstBeamModelView : public QObject {
   void mapColours_data();
   void mapColours();
   void twoModelsSideBySide();
+  void twoModelsStackInANarrowView();
   void murphyRegions();
   void hpfArcsAndHimmCell();
   void viewControls();
@@ -127,6 +128,25 @@ void TstBeamModelView::twoModelsSideBySide() {
   QVERIFY(near(mapPixel(image, scenes, 0, x, y), noUpdateColour(), 0));
   const QColor right = mapPixel(image, scenes, 1, x, y);
   QVERIFY2(near(right, occupancyColour(0.5667), 6), qPrintable(describe(right)));
+}
+
+void TstBeamModelView::twoModelsStackInANarrowView() {
+  // Issue 49 item 9: at the Beam Model dock's default width (about 250 px) two columns were
+  // 83 px wide each and could not be read. Below kMinBeamColumnWidth the scenes stack, each the
+  // full width; the same pixel checks as side by side hold in each row.
+  const QSize narrow(250, 700);
+  const std::vector<BeamScene> scenes{scene("hpf"), scene("murphy")};
+  const BeamLayout layout = beamLayout(narrow, 2);
+  QVERIFY(layout.stacked);
+  QCOMPARE(layout.map[0].width(), layout.map[1].width());
+  QVERIFY(layout.map[0].width() > 2 * kMinBeamColumnWidth / 3);
+  QVERIFY(layout.map[1].top() >= layout.surface[0].bottom());
+  QVERIFY(!beamLayout(kSize, 2).stacked);  // a wide view keeps them side by side
+  const QImage image = renderBeamModel(scenes, narrow);
+  // HPF at s: P = 1; Murphy at s = 2 on the axis: 0.8 · 0.98 = 0.784 (as twoModelsSideBySide).
+  QVERIFY(near(mapPixel(image, scenes, 0, 2.0, 0.0), occupancyColour(1.0), 6));
+  const QColor murphy = mapPixel(image, scenes, 1, 2.0, 0.0);
+  QVERIFY2(near(murphy, occupancyColour(0.784), 6), qPrintable(describe(murphy)));
 }
 
 void TstBeamModelView::murphyRegions() {
@@ -226,6 +246,9 @@ void TstBeamModelView::snapshots() {
   QVERIFY(grabbed.save(dir + "/beam_view_fig6.png"));
   QVERIFY(renderBeamModel({scene("hpf"), scene("himm")}, QSize(1200, 860))
               .save(dir + "/beam_hpf_himm.png"));
+  // Compare mode in the dock's default width: stacked.
+  QVERIFY(renderBeamModel({scene("hpf"), scene("murphy")}, QSize(250, 700))
+              .save(dir + "/beam_compare_narrow.png"));
   BeamScene fig3 = scene("murphy", 5.0);
   fig3.settings = applyPreset(*findPreset("paper002-fig3"));
   fig3.maxRange = 8.0;
