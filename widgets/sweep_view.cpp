@@ -415,9 +415,12 @@ std::optional<OptimalSet> SweepView::chooseBest() const {
     return std::nullopt;
   // A metric that is the same for every set cannot tell them apart (VSDNS of HIMM's two
   // constant model values, say): said as such, not a "best" set.
+  // (Only once two sets have a value: a sweep under way with one finished set says nothing.)
   const auto first =
       std::find_if(values.begin(), values.end(), [](const auto& v) { return v.has_value(); });
-  if (values.size() > 1 &&
+  const auto defined =
+      std::count_if(values.begin(), values.end(), [](const auto& v) { return v.has_value(); });
+  if (defined > 1 &&
       std::all_of(values.begin(), values.end(), [&](const auto& v) { return !v || *v == **first; }))
     throw std::invalid_argument(tr("%1 is the same for every set (%2): it cannot tell them apart")
                                     .arg(plotColumn_->currentText())

@@ -222,7 +222,6 @@ QStringList keepApplicable(SweepPlan& plan) {
   } catch (const std::exception&) {
     return dropped;  // an unknown model or rule: parseProject() refuses the file
   }
-  const QString pair = QString::fromStdString(plan.model + " × " + plan.rule);
   auto keep = [&](const char* key, std::vector<std::string>& list, auto check) {
     std::vector<std::string> kept;
     for (std::size_t i = 0; i < list.size(); ++i) {
@@ -242,23 +241,15 @@ QStringList keepApplicable(SweepPlan& plan) {
   keep("ties", plan.ties, [&](const std::string& t) { (void)parseSweepTie(t, declared); });
   keep("metrics", plan.metrics, [](const std::string& t) { (void)parseSweepMetrics({t}); });
   for (auto it = plan.base.begin(); it != plan.base.end();) {
-    QString why;
-    if (!declared.has(it->first)) {
-      why = QStringLiteral("%1 declares no such parameter").arg(pair);
-    } else {
-      try {
-        ParameterSet probe = declared;
-        probe.set(it->first, it->second);
-      } catch (const ParameterError& e) {
-        why = QString::fromUtf8(e.what());
-      }
-    }
-    if (why.isEmpty()) {
+    try {
+      ParameterSet probe = declared;
+      probe.set(it->first, it->second);  // names an undeclared parameter or the range missed
       ++it;
-      continue;
+    } catch (const ParameterError& e) {
+      dropped << QStringLiteral("sweep.base.%1: %2")
+                     .arg(QString::fromStdString(it->first), QString::fromUtf8(e.what()));
+      it = plan.base.erase(it);
     }
-    dropped << QStringLiteral("sweep.base.%1: %2").arg(QString::fromStdString(it->first), why);
-    it = plan.base.erase(it);
   }
   return dropped;
 }

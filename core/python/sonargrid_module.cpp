@@ -434,22 +434,16 @@ py::list parameterList(const std::vector<ParameterSpec>& specs) {
 py::dict modelsPy() {
   py::dict out;
   py::list models, rules, compatible;
-  for (const std::string& name : sensorModelNames()) {
-    const ModelInfo& m = sensorModelInfo(name);
+  // A model's or a rule's declaration (ModelInfo and RuleInfo share these three fields).
+  auto declared = [](const auto& info) {
     py::dict d;
-    d["name"] = m.name;
-    d["title"] = m.title;
-    d["parameters"] = parameterList(m.parameters);
-    models.append(d);
-  }
-  for (const std::string& name : updateRuleNames()) {
-    const RuleInfo& r = updateRuleInfo(name);
-    py::dict d;
-    d["name"] = r.name;
-    d["title"] = r.title;
-    d["parameters"] = parameterList(r.parameters);
-    rules.append(d);
-  }
+    d["name"] = info.name;
+    d["title"] = info.title;
+    d["parameters"] = parameterList(info.parameters);
+    return d;
+  };
+  for (const std::string& name : sensorModelNames()) models.append(declared(sensorModelInfo(name)));
+  for (const std::string& name : updateRuleNames()) rules.append(declared(updateRuleInfo(name)));
   for (const std::string& m : sensorModelNames())
     for (const std::string& r : updateRuleNames())
       if (compatibility(m, r).allowed) compatible.append(py::make_tuple(m, r));

@@ -47,13 +47,18 @@ std::vector<std::string> strings(const QStringList& list) {
   return out;
 }
 
-MapperSettings parameterizedBayes() {
+// A model and a rule at their declared defaults, mapped from odometry.
+MapperSettings settingsOf(const std::string& model, const std::string& rule) {
   MapperSettings s;
-  s.model = "parameterized";
-  s.rule = "bayes-recursive";
+  s.model = model;
+  s.rule = rule;
   s.parameters = defaultParameters(s.model, s.rule);
   s.pose = PoseSource::Odometry;
   return s;
+}
+
+MapperSettings parameterizedBayes() {
+  return settingsOf("parameterized", "bayes-recursive");
 }
 
 // What the core gives for every set, independently of the view: sweepSets() over the axes and
@@ -193,10 +198,7 @@ class TestSweepView : public QObject {
     QFETCH(QString, axis);
     QFETCH(QString, parameter);
     QFETCH(QList<double>, swept);
-    MapperSettings himm;
-    himm.model = "himm";
-    himm.rule = "himm";
-    himm.parameters = defaultParameters("himm", "himm");
+    const MapperSettings himm = settingsOf("himm", "himm");
     document_->setMapperSettings(himm);
     view_->setChoice({{axis.toStdString()}, {}, {"vsdns", "derivative"}});
     QVERIFY2(view_->run(), qPrintable(view_->statusText()));
@@ -228,19 +230,12 @@ class TestSweepView : public QObject {
     // Issue 49 item 8: HIMM came with paper 002's tie "p1=1-p4" (no HIMM parameter) and the view
     // could only say "cannot sweep". A model other than the plan's starts with nothing ticked, no
     // tie, and a metric that varies for it; the parameterized model gets paper 002's grid back.
-    MapperSettings himm;
-    himm.model = "himm";
-    himm.rule = "himm";
-    himm.parameters = defaultParameters("himm", "himm");
+    const MapperSettings himm = settingsOf("himm", "himm");
     document_->setMapperSettings(himm);
     QVERIFY(view_->choice().axes.empty());
     QVERIFY(view_->choice().ties.empty());
     QCOMPARE(view_->choice().metrics, std::vector<std::string>{"derivative"});
-    MapperSettings hpf;
-    hpf.model = "hpf";
-    hpf.rule = "bayes";
-    hpf.parameters = defaultParameters("hpf", "bayes");
-    document_->setMapperSettings(hpf);
+    document_->setMapperSettings(settingsOf("hpf", "bayes"));
     QVERIFY(view_->choice().ties.empty());
     QCOMPARE(view_->choice().metrics, std::vector<std::string>{"vsdns"});
     document_->setMapperSettings(parameterizedBayes());
