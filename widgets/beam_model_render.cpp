@@ -291,34 +291,32 @@ BeamLayout beamLayout(QSize size, int columns) {
   // Beam Model dock at its default width) they stack one above the other, each the full width
   // (issue 49: compare mode could not be read at the dock's width).
   l.stacked = columns > 1 && columnWidth < kMinBeamColumnWidth;
-  if (l.stacked) {
-    const int width = size.width() - barWidth;
-    const int band = size.height() / columns;
-    const int title = std::min(titleHeight, band / 4);
-    const int rest = band - title;
-    const int mapHeight = rest * 45 / 100, profileHeight = rest * 28 / 100;
-    for (int c = 0; c < columns; ++c) {
-      const int y = c * band;
-      l.title.emplace_back(0, y, width, title);
-      l.map.emplace_back(0, y + title, width, mapHeight);
-      l.profile.emplace_back(0, y + title + mapHeight, width, profileHeight);
-      l.surface.emplace_back(0, y + title + mapHeight + profileHeight, width,
-                             rest - mapHeight - profileHeight);
-    }
-    l.colourBar = QRect(width, title, barWidth, size.height() - 2 * title);
-    return l;
-  }
-  const int rest = size.height() - titleHeight;
-  const int mapHeight = rest * 40 / 100, profileHeight = rest * 26 / 100;
+  const int width = l.stacked ? size.width() - barWidth : columnWidth;
+  const int band = l.stacked ? size.height() / columns : size.height();
+  const int title = l.stacked ? std::min(titleHeight, band / 4) : titleHeight;
+  const int rest = band - title;
+  // The panels a band has room for, in this order: the cone map, the axial profile, the
+  // surface. A low band (compare mode stacked in the dock above the parameter panel) drops the
+  // surface, then the profile, rather than squeezing three unreadable panels.
+  const int panels = rest >= 3 * kMinBeamPanelHeight ? 3 : rest >= 2 * kMinBeamPanelHeight ? 2 : 1;
+  const int mapHeight = panels == 3   ? rest * (l.stacked ? 45 : 40) / 100
+                        : panels == 2 ? rest * 60 / 100
+                                      : rest;
+  const int profileHeight = panels == 3   ? rest * (l.stacked ? 28 : 26) / 100
+                            : panels == 2 ? rest - mapHeight
+                                          : 0;
+  const int surfaceHeight = rest - mapHeight - profileHeight;
   for (int c = 0; c < columns; ++c) {
-    const int x = c * columnWidth;
-    l.title.emplace_back(x, 0, columnWidth, titleHeight);
-    l.map.emplace_back(x, titleHeight, columnWidth, mapHeight);
-    l.profile.emplace_back(x, titleHeight + mapHeight, columnWidth, profileHeight);
-    l.surface.emplace_back(x, titleHeight + mapHeight + profileHeight, columnWidth,
-                           rest - mapHeight - profileHeight);
+    const int x = l.stacked ? 0 : c * columnWidth;
+    const int y = l.stacked ? c * band : 0;
+    l.title.emplace_back(x, y, width, title);
+    l.map.emplace_back(x, y + title, width, mapHeight);
+    l.profile.emplace_back(x, y + title + mapHeight, width, profileHeight);
+    l.surface.emplace_back(x, y + title + mapHeight + profileHeight, width, surfaceHeight);
   }
-  l.colourBar = QRect(columns * columnWidth, titleHeight, barWidth, mapHeight + profileHeight);
+  l.colourBar =
+      l.stacked ? QRect(width, title, barWidth, size.height() - 2 * title)
+                : QRect(columns * columnWidth, titleHeight, barWidth, mapHeight + profileHeight);
   return l;
 }
 
@@ -708,14 +706,14 @@ QImage renderBeamModel(const std::vector<BeamScene>& scenes, QSize size) {
     painter.setFont(fontOf(std::max(9, pixels - 3)));
     painter.drawText(inner.adjusted(0, headRect.height(), 0, 0), flags, summary);
     drawConeMap(painter, scene, extent, layout.map[c]);
-    drawAxialProfile(painter, scene, extent, layout.profile[c]);
-    drawSurface(painter, scene, extent, layout.surface[c]);
+    if (!layout.profile[c].isEmpty()) drawAxialProfile(painter, scene, extent, layout.profile[c]);
+    if (!layout.surface[c].isEmpty()) drawSurface(painter, scene, extent, layout.surface[c]);
     if (c > 0) {
       painter.setPen(QPen(QColor(200, 200, 200), 1));
       if (layout.stacked)
         painter.drawLine(title.topLeft(), title.topRight());
       else
-        painter.drawLine(title.topLeft(), layout.surface[c].bottomLeft());
+        painter.drawLine(title.topLeft(), QPoint(title.left(), size.height() - 1));
     }
   }
   drawColourBar(painter, layout.colourBar);

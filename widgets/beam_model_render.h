@@ -74,10 +74,13 @@ struct BeamLayout {
 };
 // The narrowest column that two scenes side by side may get; below it they stack.
 inline constexpr int kMinBeamColumnWidth = 220;
+// The lowest a panel (cone map, axial profile, surface) is drawn; a band lower than three of
+// them drops the surface, lower than two the profile too. The panels are empty rects then.
+inline constexpr int kMinBeamPanelHeight = 90;
 BeamLayout beamLayout(QSize size, int columns);
 
 // The whole picture: one column per scene (one or two; stacked rows when the columns would be
-// narrower than kMinBeamColumnWidth), a shared colour bar.
+// narrower than kMinBeamColumnWidth; fewer panels in a low band), a shared colour bar.
 QImage renderBeamModel(const std::vector<BeamScene>& scenes, QSize size);
 
 // The panels, each inside `area`.

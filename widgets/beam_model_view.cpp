@@ -25,7 +25,9 @@ constexpr double kRangeStep = 0.01;  // m per slider position
 class BeamModelView::Canvas : public QWidget {
  public:
   explicit Canvas(BeamModelView* view) : QWidget(view), view_(view) {
-    setMinimumSize(230, 280);  // narrow enough that the grid keeps half of a 1280 px window
+    // Narrow and low enough that the grid keeps 60 % of a 1280 × 800 window, with the beam
+    // view stacked above the parameter panel.
+    setMinimumSize(230, 180);
     setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Expanding);
   }
   void invalidate() {

@@ -101,6 +101,9 @@ ComparisonTable::ComparisonTable(QWidget* parent)
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->verticalHeader()->setVisible(false);
+  // A header and a row at the least: the dock shares the bottom with the one-row timeline, and
+  // what it does not need goes to the grid and the parameter panel.
+  table_->setMinimumHeight(table_->fontMetrics().height() * 3);
   table_->setToolTip(tr("Click a row to restore its configuration (undoable)"));
   connect(table_, &QTableWidget::cellClicked, this,
           [this](int row, int) { emit rowActivated(static_cast<std::size_t>(row)); });

@@ -119,20 +119,27 @@ void MainWindow::createDocks() {
   beamDock->setWidget(beamHost);
   beamDock->toggleViewAction()->setShortcut(QKeySequence(tr("Ctrl+Shift+B")));
 
-  // Right of the grid: the beam view (the map summary tabbed behind it), then the panel.
+  // One column right of the grid: the beam view (the map summary tabbed behind it) above the
+  // panel, so that the grid keeps 60 % of a 1280 px window and the panel's sliders 80 px each.
+  // The column runs down to the status bar; the timeline's row spans the grid's width only.
+  setCorner(Qt::BottomRightCorner, Qt::RightDockWidgetArea);
   addDockWidget(Qt::RightDockWidgetArea, beamDock);
-  splitDockWidget(beamDock, panelDock, Qt::Horizontal);
+  splitDockWidget(beamDock, panelDock, Qt::Vertical);
   tabifyDockWidget(beamDock, summaryDock);
   beamDock->raise();
-  // The grid keeps at least half of a 1280 px window; the panel's sliders keep 80 px each.
-  resizeDocks({beamDock, panelDock}, {260, 290}, Qt::Horizontal);
   updateSummary();
 }
 
 void MainWindow::restoreWindowState() {
   QSettings s;
   if (!restoreGeometry(s.value("window/geometry").toByteArray())) resize(1280, 800);
-  restoreState(s.value("window/state").toByteArray());
+  if (restoreState(s.value("window/state").toByteArray())) return;
+  // First launch: the column right of the grid no wider than kRightColumnWidth, and the row
+  // under it (the timeline and its tabs) no higher than its controls need.
+  if (QDockWidget* beam = findChild<QDockWidget*>(QStringLiteral("beamModelDock")))
+    resizeDocks({beam}, {kRightColumnWidth}, Qt::Horizontal);
+  if (QDockWidget* timeline = findChild<QDockWidget*>(QStringLiteral("timelineDock")))
+    resizeDocks({timeline}, {1}, Qt::Vertical);  // clamped to the tallest tab's minimum
 }
 
 void MainWindow::showCurrentScan() {

@@ -147,6 +147,25 @@ void TstBeamModelView::twoModelsStackInANarrowView() {
   QVERIFY(near(mapPixel(image, scenes, 0, 2.0, 0.0), occupancyColour(1.0), 6));
   const QColor murphy = mapPixel(image, scenes, 1, 2.0, 0.0);
   QVERIFY2(near(murphy, occupancyColour(0.784), 6), qPrintable(describe(murphy)));
+
+  // In the first-launch dock (330 px column, 310 x 300 canvas) a 150 px band has no room for
+  // three 90 px panels, nor two after its title: each scene keeps its cone map alone.
+  const QSize dock(310, 300);
+  const BeamLayout low = beamLayout(dock, 2);
+  QVERIFY(low.stacked);
+  for (std::size_t c = 0; c < 2; ++c) {
+    QVERIFY(low.profile[c].isEmpty());
+    QVERIFY(low.surface[c].isEmpty());
+    QVERIFY(low.map[c].height() >= kMinBeamPanelHeight);
+  }
+  const QImage lowImage = renderBeamModel(scenes, dock);
+  QVERIFY(near(mapPixel(lowImage, scenes, 0, 2.0, 0.0), occupancyColour(1.0), 6));
+  const QColor lowMurphy = mapPixel(lowImage, scenes, 1, 2.0, 0.0);
+  QVERIFY2(near(lowMurphy, occupancyColour(0.784), 6), qPrintable(describe(lowMurphy)));
+  // One scene there: 300 px less a 48 px title leaves 252 px, room for the map and the profile.
+  const BeamLayout one = beamLayout(dock, 1);
+  QVERIFY(!one.profile[0].isEmpty());
+  QVERIFY(one.surface[0].isEmpty());
 }
 
 void TstBeamModelView::murphyRegions() {
@@ -246,8 +265,9 @@ void TstBeamModelView::snapshots() {
   QVERIFY(grabbed.save(dir + "/beam_view_fig6.png"));
   QVERIFY(renderBeamModel({scene("hpf"), scene("himm")}, QSize(1200, 860))
               .save(dir + "/beam_hpf_himm.png"));
-  // Compare mode in the dock's default width: stacked.
-  QVERIFY(renderBeamModel({scene("hpf"), scene("murphy")}, QSize(250, 700))
+  // Compare mode in the dock's first-launch size at 1280 x 800 (a 330 px column, the beam view
+  // above the parameter panel): stacked.
+  QVERIFY(renderBeamModel({scene("hpf"), scene("murphy")}, QSize(310, 300))
               .save(dir + "/beam_compare_narrow.png"));
   BeamScene fig3 = scene("murphy", 5.0);
   fig3.settings = applyPreset(*findPreset("paper002-fig3"));
