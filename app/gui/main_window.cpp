@@ -164,7 +164,10 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
           });
   connect(remap_, &ui::RemapController::failed, this, [this](const QString& message, quint64) {
     remapLabel_->setText(tr("mapping failed"));
-    reportError(tr("Mapping failed"), document_->logPath() + QStringLiteral(": ") + message, false);
+    // A live robot's map has no file yet: the message says which map failed.
+    const QString where =
+        document_->logPath().isEmpty() ? tr("the live map") : document_->logPath();
+    reportError(tr("Mapping failed"), where + QStringLiteral(": ") + message, false);
   });
   connect(remap_, &ui::RemapController::busyChanged, this, [this](bool busy) {
     if (busy) remapLabel_->setText(tr("mapping…"));
