@@ -4,7 +4,9 @@
 // was; and the autosave of a `sonargrid` process killed with SIGKILL is found and recovered with
 // the settings it had.
 
+#include <QComboBox>
 #include <QDir>
+#include <QDoubleSpinBox>
 #include <QFile>
 #include <QJsonDocument>
 #include <QJsonObject>
@@ -14,12 +16,23 @@
 #include <QTemporaryDir>
 #include <QUndoStack>
 #include <QtTest>
+#include <cmath>
+#include <limits>
 
 #include "autosave.h"
+#include "beam_model_view.h"
+#include "cell_inspector.h"
+#include "comparison_table.h"
 #include "document.h"
 #include "main_window.h"
+#include "metrics_panel.h"
+#include "parameter_panel.h"
 #include "project_file.h"
 #include "remap_controller.h"
+#include "robot_dock.h"
+#include "sonargrid/reference/reference_json.h"
+#include "sweep_view.h"
+#include "timeline.h"
 
 using namespace sg;
 using namespace sg::app;
@@ -36,6 +49,117 @@ MapperSettings hpfAddition(double epsilon) {
   s.parameters.set("epsilon", epsilon);
   s.pose = PoseSource::Truth;
   return s;
+}
+
+constexpr int kWaitMs = 120000;  // a bound against hangs, never a measured time
+
+// The first parameter of the model that its paper's rule uses (HIMM's rule ignores p_hit).
+const ParameterSpec& firstUsed(const std::string& model) {
+  const ModelInfo& info = sensorModelInfo(model);
+  for (const ParameterSpec& p : info.parameters)
+    if (unusedParameterReason(model, info.preferredRule, p.name).empty()) return p;
+  return info.parameters.front();
+}
+
+// The model with its paper's rule and that parameter a quarter of the way from its default to
+// its maximum, to two decimals (a whole number where it takes one): a setting no new session has.
+MapperSettings offDefault(const std::string& model) {
+  MapperSettings s;
+  s.model = model;
+  s.rule = sensorModelInfo(model).preferredRule;
+  s.parameters = defaultParameters(s.model, s.rule);
+  const ParameterSpec& p = firstUsed(model);
+  double v = std::round((p.defaultValue + (p.max - p.defaultValue) / 4.0) * 100.0) / 100.0;
+  if (p.integer) v = std::max(p.defaultValue + 1.0, std::round(v));
+  s.parameters.set(p.name, std::min(v, p.max));
+  return s;
+}
+
+// What a project holds, compared field by field (the view only where both have one).
+bool sameDocument(const ProjectState& a, const ProjectState& b) {
+  const auto reference = [](const ProjectState& s) {
+    return s.reference ? referenceJsonText(*s.reference) : std::string();
+  };
+  return a.logPath == b.logPath && a.secondLogPath == b.secondLogPath &&
+         reference(a) == reference(b) && a.referencePath == b.referencePath &&
+         a.referenceModified == b.referenceModified && sameSettings(a.settings, b.settings) &&
+         a.cellSize == b.cellSize && a.overlays == b.overlays && a.pinnedRows == b.pinnedRows &&
+         a.sweep == b.sweep && (!a.view || !b.view || *a.view == *b.view);
+}
+
+// Each dock of the window used once, through its widgets where a user would.
+void useEveryDock(MainWindow& window, const std::string& model) {
+  Document* document = window.document();
+  // Parameters: the model from the panel's chooser, then its first parameter typed in.
+  MapperSettings chosen = offDefault(model);
+  const ParameterSpec& first = firstUsed(model);
+  const double typed = chosen.parameters.get(first.name);
+  chosen.parameters.set(first.name, first.defaultValue);
+  window.setMapperSettings(chosen, /*ruleNamed=*/true);
+  QDoubleSpinBox* spin = window.parameterPanel()->spinBoxFor(QString::fromStdString(first.name));
+  QVERIFY(spin);
+  spin->setValue(typed);  // as shown: to the box's decimals
+  QVERIFY(spin->value() != first.defaultValue);
+  QCOMPARE(document->mapperSettings().parameters.get(first.name), spin->value());
+  // Map: 10 cm cells.
+  auto* cell = window.findChild<QDoubleSpinBox*>(QStringLiteral("cellSize"));
+  QVERIFY(cell);
+  cell->setValue(0.1);
+  QCOMPARE(document->cellSize(), 0.1);
+  QVERIFY(window.waitForMap(kWaitMs));
+  // Timeline: a step back and to the end again.
+  window.timeline()->stepBackward();
+  QVERIFY(window.waitForMap(kWaitMs));
+  window.timeline()->setTime(std::numeric_limits<double>::max());
+  QVERIFY(window.waitForMap(kWaitMs));
+  // Beam Model: another reading, and another model to compare with.
+  window.chooseBeamSonar(3);
+  auto* compare = window.beamModelView()->findChild<QComboBox*>(QStringLiteral("compareChooser"));
+  QVERIFY(compare);
+  compare->setCurrentIndex(compare->count() - 1);
+  // Metrics: the panel's numbers of this map.
+  auto* metrics = window.findChild<ui::MetricsPanel*>();
+  QVERIFY(metrics);
+  QVERIFY(metrics->waitForResult(kWaitMs));
+  // Comparison: Pin Current.
+  auto* table = window.findChild<ui::ComparisonTable*>();
+  QVERIFY(table);
+  emit table->pinRequested();
+  QVERIFY(table->waitForResult(kWaitMs));
+  // Sweep: the first parameter at two values by IOP, then Apply Best and Pin Best (the issue's
+  // steps that once wrote a project that would not open).
+  auto* sweep = window.findChild<ui::SweepView*>();
+  QVERIFY(sweep);
+  const double lo = first.defaultValue, hi = spin->value();
+  sweep->setChoice({{QStringLiteral("%1=%2,%3")
+                         .arg(QString::fromStdString(first.name))
+                         .arg(lo, 0, 'g', 17)
+                         .arg(hi, 0, 'g', 17)
+                         .toStdString()},
+                    {},
+                    {"iop"}});
+  QVERIFY(sweep->run());
+  QVERIFY(sweep->waitForSweep(kWaitMs));
+  QVERIFY2(sweep->applyBest(), qPrintable(sweep->statusText()));
+  QVERIFY(sweep->pinBest());
+  QVERIFY(window.waitForMap(kWaitMs));
+  // Reference editor: one corner moved 10 cm, an edit the project holds inline.
+  ReferenceMap edited = *document->reference();
+  edited.objects.front().corners.front().x() += 0.1 / edited.metresPerUnit();
+  document->setReference(edited, document->referencePath());
+  QVERIFY(document->referenceModified());
+  // Cell inspector: the trace of the centre cell.
+  ui::CellInspector* inspector = window.cellInspector();
+  const GridSpec& spec = window.gridView()->map()->spec;
+  QSignalSpy traced(inspector, &ui::CellInspector::traced);
+  QVERIFY(inspector->inspect(CellIndex(spec.width / 2, spec.height / 2)));
+  QVERIFY(traced.wait(kWaitMs));
+  // Robot: another world chosen, not started; it is not the document's.
+  auto* robot = window.findChild<RobotDock*>();
+  QVERIFY(robot);
+  robot->setWorld(QStringLiteral(SONARGRID_DATASETS "/raschke-single/world.json"));
+  // View: the robot's path switched off.
+  document->setOverlays(document->overlays() & ~ui::Overlays(ui::Overlay::Path));
 }
 
 }  // namespace
@@ -179,6 +303,131 @@ class TestMainWindowProject : public QObject {
     QVERIFY(d.isModified());  // recovered work is still unsaved
     QVERIFY(window.isWindowModified());
     QVERIFY(!QFile::exists(autosave));
+    QVERIFY(Autosave::orphans().isEmpty());
+  }
+
+  // Issue 49 item 2: a project the app wrote must always open. For every model, each dock is
+  // used once as a user would (the parameter panel's spin box, the Map dock's cell size, the
+  // timeline, the beam view's reading and compare model, the metrics panel, the comparison
+  // table's pin, the sweep view's run with Apply Best and Pin Best, a reference edit, the cell
+  // inspector, the Robot dock's world, an overlay switched off). Then the project is saved and
+  // opens in a new window with nothing dropped and the same document and map; and the session's
+  // autosave, taken while it was unsaved and left as a crashed session leaves it (no live lock),
+  // is recovered with the same document, still unsaved. (A killed process cannot use the docks;
+  // killedSessionOfEveryModelIsRecovered kills one per model with its settings.)
+  void everyModelWithEveryDockRoundTrips_data() {
+    QTest::addColumn<QString>("model");
+    for (const std::string& name : sensorModelNames())
+      QTest::newRow(name.c_str()) << QString::fromStdString(name);
+  }
+
+  void everyModelWithEveryDockRoundTrips() {
+    QFETCH(QString, model);
+    QSettings().clear();
+    qputenv("SONARGRID_AUTOSAVE_MS", "100");
+    QTemporaryDir dir;
+    const QString file = dir.filePath(QStringLiteral("every-dock.sgproj"));
+    const QString orphan = autosaveDir_.filePath(QStringLiteral("session-999998.sgproj"));
+    ProjectState saved;
+    std::vector<std::uint8_t> savedLevels;
+    {
+      MainWindow window(ui::GridView::Backend::Raster);
+      qunsetenv("SONARGRID_AUTOSAVE_MS");
+      window.resize(1280, 800);
+      window.show();
+      QVERIFY(window.openLog(kRoom, true));
+      QVERIFY(window.waitForMap(kWaitMs));
+      useEveryDock(window, model.toStdString());
+      if (QTest::currentTestFailed()) return;
+      QVERIFY(window.waitForMap(kWaitMs));
+      QVERIFY(window.document()->isModified());
+      saved = window.document()->state();
+      saved.view = window.gridView()->view();
+      // The window's autosave of this state, left behind as a crashed session leaves it.
+      const QString autosave =
+          autosaveDir_.filePath(QStringLiteral("session-%1.sgproj").arg(qApp->applicationPid()));
+      QTRY_VERIFY_WITH_TIMEOUT(
+          QFile::exists(autosave) && sameDocument(readProject(autosave), saved), kWaitMs);
+      QFile::remove(orphan);
+      QVERIFY(QFile::copy(autosave, orphan));
+
+      QVERIFY(window.saveProjectAs(file, true));
+      QVERIFY(!window.isWindowModified());
+      savedLevels = window.gridView()->map()->level;
+    }
+    QStringList dropped;
+    const ProjectState read = readProject(file, &dropped);
+    QVERIFY2(dropped.isEmpty(), qPrintable(dropped.join(QStringLiteral("; "))));
+    QVERIFY(sameDocument(read, saved));
+    {
+      MainWindow window(ui::GridView::Backend::Raster);
+      window.show();
+      QVERIFY(window.openProject(file, true));
+      QVERIFY(window.waitForMap(kWaitMs));
+      QVERIFY(sameDocument(window.document()->state(), saved));
+      QCOMPARE(window.gridView()->view(), *saved.view);
+      QVERIFY(window.gridView()->map()->level == savedLevels);
+      QVERIFY(!window.isWindowModified());
+    }
+    {
+      QCOMPARE(Autosave::orphans(), QStringList{orphan});
+      MainWindow window(ui::GridView::Backend::Raster);
+      window.show();
+      QVERIFY(window.offerRecovery(QStringLiteral("yes")));
+      QVERIFY(window.waitForLoad(kWaitMs));
+      QVERIFY(window.waitForMap(kWaitMs));
+      QVERIFY(sameDocument(window.document()->state(), saved));
+      QVERIFY(window.gridView()->map()->level == savedLevels);
+      QVERIFY(window.document()->isModified());  // recovered work is still unsaved
+      QVERIFY(!QFile::exists(orphan));
+    }
+  }
+
+  // A real SIGKILL for every model: the session maps the room with the model, its paper's rule,
+  // a parameter off its default and 10 cm cells (edits, so it autosaves), and is killed; the
+  // next window recovers those settings.
+  void killedSessionOfEveryModelIsRecovered_data() { everyModelWithEveryDockRoundTrips_data(); }
+
+  void killedSessionOfEveryModelIsRecovered() {
+    QFETCH(QString, model);
+    const MapperSettings settings = offDefault(model.toStdString());
+    const ParameterSpec& changed = firstUsed(settings.model);
+    QTemporaryDir home;
+    QVERIFY(home.isValid());
+    QProcess app;
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.insert("QT_QPA_PLATFORM", "offscreen");
+    env.insert("SONARGRID_AUTOSAVE_MS", "200");
+    env.insert("SONARGRID_AUTOSAVE_DIR", autosaveDir_.path());
+    env.insert("XDG_CONFIG_HOME", home.filePath("config"));
+    env.insert("XDG_DATA_HOME", home.filePath("data"));
+    app.setProcessEnvironment(env);
+    app.setProcessChannelMode(QProcess::ForwardedErrorChannel);
+    app.start(QStringLiteral(SONARGRID_APP),
+              {kRoom, "--model", model, "--rule", QString::fromStdString(settings.rule), "--set",
+               QStringLiteral("%1=%2")
+                   .arg(QString::fromStdString(changed.name))
+                   .arg(settings.parameters.get(changed.name), 0, 'g', 17),
+               "--cell", "0.1"});
+    QVERIFY(app.waitForStarted(30000));
+    const QString autosave =
+        autosaveDir_.filePath(QStringLiteral("session-%1.sgproj").arg(app.processId()));
+    QTRY_VERIFY_WITH_TIMEOUT(
+        QFile::exists(autosave) && readProject(autosave).settings.model == settings.model, kWaitMs);
+    app.kill();
+    QVERIFY(app.waitForFinished(30000));
+    QCOMPARE(app.exitStatus(), QProcess::CrashExit);
+    QCOMPARE(Autosave::orphans(), QStringList{autosave});
+    MainWindow window(ui::GridView::Backend::Raster);
+    window.show();
+    QVERIFY(window.offerRecovery(QStringLiteral("yes")));
+    QVERIFY(window.waitForLoad(kWaitMs));
+    QVERIFY(window.waitForMap(kWaitMs));
+    const Document& d = *window.document();
+    QCOMPARE(d.logPath(), QFileInfo(kRoom).absoluteFilePath());
+    QVERIFY(sameSettings(d.mapperSettings(), settings));
+    QCOMPARE(d.cellSize(), 0.1);
+    QVERIFY(d.isModified());
     QVERIFY(Autosave::orphans().isEmpty());
   }
 
