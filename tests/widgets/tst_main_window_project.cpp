@@ -263,15 +263,7 @@ class TestMainWindowProject : public QObject {
     QTemporaryDir home;
     QVERIFY(home.isValid());
     QProcess app;
-    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-    env.insert("QT_QPA_PLATFORM", "offscreen");
-    env.insert("SONARGRID_AUTOSAVE_MS", "200");
-    env.insert("SONARGRID_AUTOSAVE_DIR", autosaveDir_.path());
-    // The child's own settings, not the user's.
-    env.insert("XDG_CONFIG_HOME", home.filePath("config"));
-    env.insert("XDG_DATA_HOME", home.filePath("data"));
-    app.setProcessEnvironment(env);
-    app.setProcessChannelMode(QProcess::ForwardedErrorChannel);
+    prepareApp(app, home);
     // The settings differ from a new session's (HIMM, 5 cm): edits, so the document is modified.
     app.start(QStringLiteral(SONARGRID_APP),
               {kRoom, "--model", "hpf", "--rule", "addition", "--set", "epsilon=0.23", "--pose",
@@ -395,14 +387,7 @@ class TestMainWindowProject : public QObject {
     QTemporaryDir home;
     QVERIFY(home.isValid());
     QProcess app;
-    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
-    env.insert("QT_QPA_PLATFORM", "offscreen");
-    env.insert("SONARGRID_AUTOSAVE_MS", "200");
-    env.insert("SONARGRID_AUTOSAVE_DIR", autosaveDir_.path());
-    env.insert("XDG_CONFIG_HOME", home.filePath("config"));
-    env.insert("XDG_DATA_HOME", home.filePath("data"));
-    app.setProcessEnvironment(env);
-    app.setProcessChannelMode(QProcess::ForwardedErrorChannel);
+    prepareApp(app, home);
     app.start(QStringLiteral(SONARGRID_APP),
               {kRoom, "--model", model, "--rule", QString::fromStdString(settings.rule), "--set",
                QStringLiteral("%1=%2")
@@ -447,6 +432,19 @@ class TestMainWindowProject : public QObject {
   }
 
  private:
+  // A `sonargrid` child offscreen that autosaves every 200 ms into this test's folder, with its
+  // own settings under `home`, not the user's.
+  void prepareApp(QProcess& app, const QTemporaryDir& home) const {
+    QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
+    env.insert("QT_QPA_PLATFORM", "offscreen");
+    env.insert("SONARGRID_AUTOSAVE_MS", "200");
+    env.insert("SONARGRID_AUTOSAVE_DIR", autosaveDir_.path());
+    env.insert("XDG_CONFIG_HOME", home.filePath("config"));
+    env.insert("XDG_DATA_HOME", home.filePath("data"));
+    app.setProcessEnvironment(env);
+    app.setProcessChannelMode(QProcess::ForwardedErrorChannel);
+  }
+
   QTemporaryDir autosaveDir_;
 };
 
