@@ -63,6 +63,12 @@ void connectSweepView(ui::SweepView* view, Document* document) {
     *shownModel = document->mapperSettings().model;
     view->setChoice(choiceFor(*document));
   });
+  // A reference that comes or goes changes the default metric (IOP needs one) of a choice the
+  // user has not edited for this model.
+  QObject::connect(document, &Document::referenceChanged, view, [view, document] {
+    if (document->sweep().model != document->mapperSettings().model)
+      view->setChoice(choiceFor(*document));
+  });
   // Undo, redo and opening a project show the document's choice.
   QObject::connect(document, &Document::sweepChanged, view,
                    [view, document] { view->setChoice(choiceFor(*document)); });

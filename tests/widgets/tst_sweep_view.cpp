@@ -253,6 +253,24 @@ class TestSweepView : public QObject {
     QCOMPARE(view_->results()->columns(), (std::vector<std::string>{"iop_mm", "recall"}));
   }
 
+  void sweepDefaultsFollowAReferenceThatComesLater() {
+    // A new session starts with HIMM; the room log's reference arrives after the model was
+    // chosen (as opening a bundled log does): the untouched choice takes IOP then, and gives it
+    // back to derivative noise when the reference is closed. An edited choice is left alone.
+    document_->setMapperSettings(settingsOf("himm", "himm"));
+    QCOMPARE(view_->choice().metrics, std::vector<std::string>{"derivative"});
+    const QString room = QStringLiteral(SONARGRID_DATASETS "/room/room.json");
+    document_->setReference(readReference(room.toStdString()), room);
+    QCOMPARE(view_->choice().metrics, std::vector<std::string>{"iop"});
+    document_->setReference(std::nullopt, QString());
+    QCOMPARE(view_->choice().metrics, std::vector<std::string>{"derivative"});
+    const ui::SweepChoice edited{{"increment=1,3"}, {}, {"entropy"}};
+    view_->setChoice(edited);
+    emit view_->choiceEdited(edited);  // as ticking in the view does
+    document_->setReference(readReference(room.toStdString()), room);
+    QCOMPARE(view_->choice().metrics, std::vector<std::string>{"entropy"});
+  }
+
   void applyBestIsOneUndoStep_data() {
     QTest::addColumn<int>("rule");
     QTest::newRow("lowest bin") << static_cast<int>(ui::SweepView::BestRule::LowestBin);
