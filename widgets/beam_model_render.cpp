@@ -314,9 +314,12 @@ BeamLayout beamLayout(QSize size, int columns) {
     l.profile.emplace_back(x, y + title + mapHeight, width, profileHeight);
     l.surface.emplace_back(x, y + title + mapHeight + profileHeight, width, surfaceHeight);
   }
-  l.colourBar =
-      l.stacked ? QRect(width, title, barWidth, size.height() - 2 * title)
-                : QRect(columns * columnWidth, titleHeight, barWidth, mapHeight + profileHeight);
+  l.colourBar = l.stacked
+                    ? QRect(width, title, barWidth, size.height() - 2 * title)
+                    // A low view gives the bar its whole height: room for its labels.
+                    : (panels == 3 ? QRect(columns * columnWidth, titleHeight, barWidth,
+                                           mapHeight + profileHeight)
+                                   : QRect(columns * columnWidth, 0, barWidth, size.height()));
   return l;
 }
 
@@ -653,7 +656,13 @@ void drawColourBar(QPainter& painter, const QRect& area) {
   painter.setPen(QPen(QColor(60, 60, 60), 1));
   painter.drawRect(QRectF(bar).adjusted(-0.5, -0.5, 0.5, 0.5));
   painter.setFont(fontOf(fp));
-  for (const double t : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+  // Five labelled ticks where a label's height fits between two, else three, else the ends.
+  const double labelSpace = bar.height() / static_cast<double>(fp);
+  const std::vector<double> ticks = labelSpace >= 6.0
+                                        ? std::vector<double>{0.0, 0.25, 0.5, 0.75, 1.0}
+                                    : labelSpace >= 3.0 ? std::vector<double>{0.0, 0.5, 1.0}
+                                                        : std::vector<double>{0.0, 1.0};
+  for (const double t : ticks) {
     const double y = bar.bottom() + 1 - t * bar.height();
     painter.drawLine(QPointF(bar.right() + 1, y), QPointF(bar.right() + fp * 0.5, y));
     painter.drawText(QPointF(bar.right() + fp * 0.7, y + fp * 0.35), number(t));

@@ -166,6 +166,9 @@ void TstBeamModelView::twoModelsStackInANarrowView() {
   const BeamLayout one = beamLayout(dock, 1);
   QVERIFY(!one.profile[0].isEmpty());
   QVERIFY(one.surface[0].isEmpty());
+  // Its colour bar takes the view's whole height, as low as the view is, for its labels.
+  QCOMPARE(one.colourBar.top(), 0);
+  QCOMPARE(one.colourBar.height(), dock.height());
 }
 
 void TstBeamModelView::murphyRegions() {
