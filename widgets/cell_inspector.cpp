@@ -15,10 +15,6 @@ namespace sg::ui {
 
 namespace {
 
-bool sameSettings(const MapperSettings& a, const MapperSettings& b) {
-  return a.model == b.model && a.rule == b.rule && a.pose == b.pose && a.parameters == b.parameters;
-}
-
 enum Column { kTime, kSonar, kRange, kEmpty, kOccupied, kNative, kProbability, kColumns };
 
 QString number(double v, int decimals) {
@@ -97,7 +93,7 @@ CellInspector::~CellInspector() {
 
 void CellInspector::setContext(std::shared_ptr<const Dataset> log, const GridSpec& grid,
                                const MapperSettings& settings) {
-  const bool same = log == data_ && grid_ == grid && sameSettings(settings, settings_);
+  const bool same = log == data_ && grid_ == grid && settings == settings_;
   if (same) return;
   // A new grid (another cell size or log) keeps the same place of the world inspected.
   std::optional<Position> world = cellCentre();

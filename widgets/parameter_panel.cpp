@@ -332,8 +332,7 @@ bool ParameterPanel::applyPreset(const QString& name) {
   if (!preset) return false;
   MapperSettings next = sg::applyPreset(*preset);
   next.pose = settings_.pose;
-  const bool same = next.model == settings_.model && next.rule == settings_.rule &&
-                    next.parameters == settings_.parameters;
+  const bool same = next == settings_;
   setSettings(next, /*ruleNamed=*/true);  // a preset names its rule: no "rule changed" note
   if (!same) changed();
   return true;
@@ -409,6 +408,7 @@ void ParameterPanel::refreshRuleAvailability() {
 void ParameterPanel::rebuildRows() {
   for (QGroupBox* box : rowsHost_->findChildren<QGroupBox*>(Qt::FindDirectChildrenOnly)) delete box;
   rows_.clear();
+  dragging_ = false;  // a held slider went with its row
   const ModelInfo& model = sensorModelInfo(settings_.model);
   const RuleInfo& rule = updateRuleInfo(settings_.rule);
   const QString caveat = qs(sensorModelCaveat(settings_.model));
@@ -501,6 +501,13 @@ void ParameterPanel::addRows(const std::vector<ParameterSpec>& specs, const QStr
         spin->setValue(std::min(max, min + position * step));
       }
       commit(key, spin->value());  // the spin box's rounding keeps values short decimals
+    });
+    // A slider held down is a drag: the settings it emits meanwhile are one edit, which ends
+    // when it is let go.
+    connect(slider, &QSlider::sliderPressed, this, [this] { dragging_ = true; });
+    connect(slider, &QSlider::sliderReleased, this, [this] {
+      dragging_ = false;
+      emit dragFinished();
     });
     connect(spin, &QDoubleSpinBox::valueChanged, this, [=, this](double value) {
       if (updating_) return;

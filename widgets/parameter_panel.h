@@ -46,6 +46,10 @@ class ParameterPanel : public QWidget {
   // name goes to the tooltip).
   static constexpr int kMinSliderWidth = 96;  // a groove of at least 80 px in any style
 
+  // True while one of the panel's sliders is held down: the settingsChanged() it emits are steps
+  // of one drag, which dragFinished() ends.
+  bool dragging() const { return dragging_; }
+
   // The note under the choosers ("Rule changed from …", an out-of-range value), or "" when none
   // is shown.
   QString statusText() const;
@@ -63,6 +67,8 @@ class ParameterPanel : public QWidget {
 
  signals:
   void settingsChanged(const sg::MapperSettings& settings);
+  // A held slider was let go: the drag's steps are over.
+  void dragFinished();
 
  private:
   struct ParameterRow {
@@ -97,6 +103,7 @@ class ParameterPanel : public QWidget {
   QScrollArea* scroll_ = nullptr;
   QVBoxLayout* rowsLayout_ = nullptr;
   std::vector<ParameterRow> rows_;
+  bool dragging_ = false;  // a slider of the panel is held down (dragging())
   bool updating_ = false;  // true while the panel itself moves widgets to show settings_
 };
 

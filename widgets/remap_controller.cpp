@@ -49,10 +49,6 @@ struct RemapController::Outcome {
 
 namespace {
 
-bool sameSettings(const MapperSettings& a, const MapperSettings& b) {
-  return a.model == b.model && a.rule == b.rule && a.pose == b.pose && a.parameters == b.parameters;
-}
-
 bool readingsInTimeOrder(const Dataset& data) {
   double last = -std::numeric_limits<double>::infinity();
   for (const Scan& scan : data.scans)
@@ -242,7 +238,7 @@ RemapController::Outcome RemapController::mapLoaded(WarmMapper& warm, const Requ
     warm.ordered = readingsInTimeOrder(data);
   }
   out.incremental = warm.mapper && warm.ordered && warm.cellSize == request.cellSize &&
-                    sameSettings(warm.settings, settings) && until >= warm.until;
+                    warm.settings == settings && until >= warm.until;
   if (out.incremental) {
     for (std::size_t i = warm.nextScan; i < data.scans.size() && !out.interrupted; ++i) {
       const Scan& scan = data.scans[i];
@@ -292,9 +288,8 @@ RemapController::Outcome RemapController::mapLive(WarmMapper& warm, const Reques
   }
   // Continuing adds the readings after the mapped ones: a prefix of the log in log order when the
   // readings are in time order, or when every reading of the scans mapped so far was taken.
-  out.incremental = warm.mapper && warm.cellSize == request.cellSize &&
-                    sameSettings(warm.settings, settings) && until >= warm.until &&
-                    (scans.readingsInTimeOrder() || warm.until == kInf);
+  out.incremental = warm.mapper && warm.cellSize == request.cellSize && warm.settings == settings &&
+                    until >= warm.until && (scans.readingsInTimeOrder() || warm.until == kInf);
   if (!out.incremental) {
     // From the last limits when there are some for these cells (a live view keeps its ground),
     // else one cell at the first pose; append() grows it.

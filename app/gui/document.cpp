@@ -67,7 +67,7 @@ void Document::setReferenceFromFile(ReferenceMap map, QString path) {
 }
 
 void Document::setMapperSettings(const MapperSettings& settings, bool drag) {
-  if (sameSettings(settings, state_.settings)) return;
+  if (settings == state_.settings) return;
   undo_->push(new SetSettingsCommand(this, state_.settings, settings, dragFor(drag)));
 }
 

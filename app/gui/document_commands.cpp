@@ -44,7 +44,7 @@ bool SetSettingsCommand::mergeWith(const QUndoCommand* other) {
   after_ = next->after_;
   setText(settingsText(before_, after_));
   // A drag back to where it started leaves no step (QUndoStack drops an obsolete command).
-  setObsolete(sameSettings(before_, after_));
+  setObsolete(before_ == after_);
   return true;
 }
 

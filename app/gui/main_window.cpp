@@ -246,7 +246,7 @@ void MainWindow::onSettingsChanged() {
   if (adopting_) return;  // adoptLog starts the re-map itself, with the new log
   const MapperSettings& settings = document_->mapperSettings();
   // The same settings again (a menu item that is already checked, a panel echo) map nothing new.
-  if (document_->dataset() && sameSettings(settings, remap_->settings())) return;
+  if (document_->dataset() && settings == remap_->settings()) return;
   remap_->setSettings(settings);
 }
 

@@ -8,7 +8,6 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QSettings>
-#include <QSlider>
 #include <QVBoxLayout>
 
 #include "beam_model_view.h"
@@ -73,16 +72,10 @@ void MainWindow::createDocks() {
   // everywhere else (the panel itself ignores settings it already holds).
   panel_ = new ui::ParameterPanel(this);
   panel_->setSettings(document_->mapperSettings());
-  connect(panel_, &ui::ParameterPanel::settingsChanged, this, [this](const MapperSettings& s) {
-    // A slider held down is a drag: its steps merge into one undo step until it is released.
-    QSlider* dragged = nullptr;
-    for (QSlider* slider : panel_->findChildren<QSlider*>())
-      if (slider->isSliderDown()) dragged = slider;
-    if (dragged)
-      connect(dragged, &QSlider::sliderReleased, document_, &Document::endDrag,
-              Qt::UniqueConnection);
-    document_->setMapperSettings(s, dragged != nullptr);
-  });
+  // A drag's steps merge into one undo step until the slider is let go.
+  connect(panel_, &ui::ParameterPanel::settingsChanged, this,
+          [this](const MapperSettings& s) { document_->setMapperSettings(s, panel_->dragging()); });
+  connect(panel_, &ui::ParameterPanel::dragFinished, document_, &Document::endDrag);
   auto* panelDock = new QDockWidget(tr("Parameters"), this);
   panelDock->setObjectName(QStringLiteral("parametersDock"));
   panelDock->setWidget(panel_);

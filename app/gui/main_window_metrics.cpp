@@ -120,7 +120,7 @@ MetricsDocks installMetrics(MainWindow* window) {
                    [document](std::size_t row) {
                      if (row >= document->pinnedRows().size()) return;
                      const PinnedRow pinned = document->pinnedRows()[row];
-                     if (sameSettings(pinned.settings, document->mapperSettings()) &&
+                     if (pinned.settings == document->mapperSettings() &&
                          pinned.cellSize == document->cellSize())
                        return;
                      document->undoStack()->beginMacro(QObject::tr("Restore %1").arg(pinned.label));

@@ -63,9 +63,7 @@ struct ProjectState {
 };
 
 inline bool operator==(const PinnedRow& a, const PinnedRow& b) {
-  return a.label == b.label && a.settings.model == b.settings.model &&
-         a.settings.rule == b.settings.rule && a.settings.pose == b.settings.pose &&
-         a.settings.parameters == b.settings.parameters && a.cellSize == b.cellSize;
+  return a.label == b.label && a.settings == b.settings && a.cellSize == b.cellSize;
 }
 
 inline bool operator==(const SweepPlan& a, const SweepPlan& b) {
@@ -75,8 +73,9 @@ inline bool operator==(const SweepPlan& a, const SweepPlan& b) {
          a.metrics == b.metrics;
 }
 
+// MapperSettings::operator==, under the name the project tests use.
 inline bool sameSettings(const MapperSettings& a, const MapperSettings& b) {
-  return a.model == b.model && a.rule == b.rule && a.pose == b.pose && a.parameters == b.parameters;
+  return a == b;
 }
 
 }  // namespace sg::app

@@ -57,6 +57,9 @@ struct MapperSettings {
   std::string rule = "addition";
   ParameterSet parameters;  // the model's and the rule's, by name; see defaultParameters()
   PoseSource pose = PoseSource::Odometry;
+
+  // The same model, rule, parameter values and pose source: the same map of the same log.
+  bool operator==(const MapperSettings&) const = default;
 };
 
 // Every parameter the model and the rule declare, at its default. Throws MapperError on an unknown
