@@ -10,8 +10,8 @@
 #include <sstream>
 
 #include "commands.h"
-#include "sonargrid/models/sensor_model.h"
-#include "sonargrid/rules/update_rule.h"
+#include "sonargrid/engine/sensor_model.h"
+#include "sonargrid/engine/update_rule.h"
 
 namespace sg::cli {
 namespace {

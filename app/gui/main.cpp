@@ -26,8 +26,8 @@
 #include "preferences.h"
 #include "project_file.h"
 #include "sonargrid/concurrency.h"
-#include "sonargrid/models/sensor_model.h"
-#include "sonargrid/rules/update_rule.h"
+#include "sonargrid/engine/sensor_model.h"
+#include "sonargrid/engine/update_rule.h"
 
 namespace {
 

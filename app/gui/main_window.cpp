@@ -31,10 +31,10 @@
 #include "reference_editing.h"
 #include "remap_controller.h"
 #include "robot_dock.h"
+#include "sonargrid/engine/sensor_model.h"
+#include "sonargrid/engine/update_rule.h"
 #include "sonargrid/io/log_reader.h"
-#include "sonargrid/models/sensor_model.h"
 #include "sonargrid/reference/read_reference.h"
-#include "sonargrid/rules/update_rule.h"
 #include "timeline.h"
 
 // The window's resources live in this static library; a static library's resource initialiser

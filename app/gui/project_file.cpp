@@ -10,9 +10,9 @@
 #include <cmath>
 
 #include "sonargrid/base/atomic_file.h"
+#include "sonargrid/engine/update_rule.h"
 #include "sonargrid/reference/read_reference.h"
 #include "sonargrid/reference/reference_json.h"
-#include "sonargrid/rules/update_rule.h"
 #include "sonargrid/sweep/sweep_grid.h"
 #include "sonargrid/sweep/sweep_metrics.h"
 

@@ -18,12 +18,12 @@
 
 #include "sonargrid/beam_tables.h"
 #include "sonargrid/dataset.h"
+#include "sonargrid/engine/sensor_model.h"
+#include "sonargrid/engine/update_rule.h"
 #include "sonargrid/footprint.h"
 #include "sonargrid/grid.h"
-#include "sonargrid/models/sensor_model.h"
 #include "sonargrid/occupancy_map.h"
 #include "sonargrid/parameters.h"
-#include "sonargrid/rules/update_rule.h"
 
 namespace sg {
 

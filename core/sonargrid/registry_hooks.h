@@ -7,8 +7,8 @@
 #include <functional>
 #include <memory>
 
-#include "sonargrid/models/sensor_model.h"
-#include "sonargrid/rules/update_rule.h"
+#include "sonargrid/engine/sensor_model.h"
+#include "sonargrid/engine/update_rule.h"
 
 namespace sg {
 enum class ConeLanes : int;  // lanes.h

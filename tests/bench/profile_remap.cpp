@@ -37,8 +37,8 @@
 #include "sonargrid/beam_tables.h"
 #include "sonargrid/concurrency.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/models/lanes.h"
 #include "sonargrid/registry_hooks.h"
+#include "sonargrid/simd/lanes.h"
 
 namespace {
 

@@ -9,11 +9,11 @@
 #include <random>
 #include <type_traits>
 
+#include "sonargrid/engine/sensor_model.h"
+#include "sonargrid/engine/update_rule.h"
 #include "sonargrid/models/cone_raster.h"
-#include "sonargrid/models/lanes.h"
-#include "sonargrid/models/sensor_model.h"
 #include "sonargrid/registry_hooks.h"
-#include "sonargrid/rules/update_rule.h"
+#include "sonargrid/simd/lanes.h"
 
 using namespace sg;
 

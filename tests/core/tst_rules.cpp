@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <limits>
 
-#include "sonargrid/models/lanes.h"
+#include "sonargrid/engine/update_rule.h"
 #include "sonargrid/registry_hooks.h"
 #include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
-#include "sonargrid/rules/update_rule.h"
+#include "sonargrid/simd/lanes.h"
 
 using namespace sg;
 

@@ -17,9 +17,9 @@
 #include <type_traits>
 #include <vector>
 
+#include "sonargrid/engine/sensor_model.h"
 #include "sonargrid/models/cone_raster.h"
-#include "sonargrid/models/lanes.h"
-#include "sonargrid/models/sensor_model.h"
+#include "sonargrid/simd/lanes.h"
 
 namespace sg {
 

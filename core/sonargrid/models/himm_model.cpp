@@ -10,10 +10,10 @@
 #include <span>
 #include <vector>
 
+#include "sonargrid/engine/update_rule.h"
 #include "sonargrid/grid.h"
 #include "sonargrid/models/cone_model.h"
 #include "sonargrid/models/model_classes.h"
-#include "sonargrid/rules/update_rule.h"
 
 namespace sg {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <memory>
 
-#include "sonargrid/models/sensor_model.h"
+#include "sonargrid/engine/sensor_model.h"
 
 namespace sg {
 

@@ -10,7 +10,7 @@
 #include <functional>
 #include <vector>
 
-#include "sonargrid/models/lanes.h"
+#include "sonargrid/simd/lanes.h"
 
 namespace sg {
 

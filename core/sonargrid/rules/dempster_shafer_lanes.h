@@ -13,8 +13,8 @@
 #define SG_INLINE_LAMBDA
 #endif
 
-#include "sonargrid/models/lanes.h"
 #include "sonargrid/rules/rule_classes.h"
+#include "sonargrid/simd/lanes.h"
 
 namespace sg::runs {
 

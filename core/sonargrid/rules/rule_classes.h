@@ -8,7 +8,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "sonargrid/rules/update_rule.h"
+#include "sonargrid/engine/update_rule.h"
 
 namespace sg {
 

@@ -19,9 +19,9 @@
 #include <cstring>
 #include <span>
 
-#include "sonargrid/models/lanes.h"
 #include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/dempster_shafer_lanes.h"  // and SG_INLINE_LAMBDA
+#include "sonargrid/simd/lanes.h"
 
 // On x86-64 with GCC, each kernel that updates runs also has a version in eight double lanes with
 // masks, built for AVX-512 and chosen at run time where the CPU has it (coneLanes(), lanes.h): a
