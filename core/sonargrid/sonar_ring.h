@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Sonar mounting and rings. Presets follow the manufacturers' published geometry (docs/live-robot.md, docs/formats.md).
+// Sonar mounting and rings. Presets follow the manufacturers' published geometry
+// (docs/live-robot.md, docs/formats.md).
 
 #include <string>
 #include <string_view>
