@@ -228,7 +228,8 @@ int runRecord(Arguments& args) {
               << " SIPs, " << c.simStats << " SIMSTATs), " << c.framing.badChecksums
               << " bad checksums, " << c.errors() - c.framing.badChecksums
               << " other malformed packets, " << c.framing.skippedBytes << " bytes skipped, "
-              << c.handshakes << " connections, " << c.reconnects << " reconnects, " << c.readings
+              << c.handshakes << " connections, " << c.reconnects << " reconnects, "
+              << c.lostConnections << " lost, " << c.timeouts << " timed out, " << c.readings
               << " readings\n";
   }
   if (!failure.empty()) throw std::runtime_error(failure);

@@ -688,6 +688,35 @@ class TstArcos : public QObject {
     for (int i = 1; i <= 600; ++i) s.tick(i * 0.01);
     QCOMPARE(silent.syncs, 5);  // at 0, 1, 2, 3 and 4 s
     QVERIFY2(silent.lost.starts_with("no answer to the handshake"), silent.lost.c_str());
+    QVERIFY2(silent.lost.ends_with(": nothing came back (is the robot on, and the port or "
+                                   "address right?)"),
+             silent.lost.c_str());
+  }
+
+  // Issue 50 item 9: a handshake that fails on garbage says what came back and the likely
+  // cause. Every 10 ms the line brings 8 bytes: the header FA FB, count 5 (three payload bytes
+  // and the two of the checksum), 01 02 03 and a checksum of 0; ARCOS sums the payload as
+  // big-endian byte pairs and XORs an odd last byte in, 0x0102 ^ 0x03 = 0x0101, so no packet is
+  // valid. The tick at 5 s gives up after that tick's bytes: 500 ticks of 8 bytes.
+  void handshakeOnGarbageSaysWhatCameBack() {
+    struct Listener : arcos::ClientSession::Listener {
+      std::string lost;
+      void sendBytes(std::span<const std::uint8_t>) override {}
+      void onLost(const std::string& reason) override { lost = reason; }
+    } listener;
+    arcos::ClientSession s({}, listener);
+    s.start(0.0);
+    const Bytes noise{0xFA, 0xFB, 0x05, 0x01, 0x02, 0x03, 0x00, 0x00};
+    for (int i = 1; i <= 600 && listener.lost.empty(); ++i) {
+      s.receive(noise, i * 0.01);
+      s.tick(i * 0.01);
+    }
+    const std::string& why = listener.lost;
+    QVERIFY2(why.starts_with("no answer to the handshake within 5.0 s: 4000 bytes came back, 0 "
+                             "valid packets, "),
+             why.c_str());
+    QVERIFY2(why.ends_with(" (wrong baud rate, or not an ARCOS robot?)"), why.c_str());
+    QVERIFY(s.counters().framing.badChecksums > 0);
   }
 
   // The robot obeys motion commands, refuses to drive into a wall and stops when its client

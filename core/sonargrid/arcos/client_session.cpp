@@ -38,6 +38,7 @@ void ClientSession::start(double now) {
   decoder_.reset();
   tracker_.reset();
   handshakeStart_ = now;
+  framingAtStart_ = decoder_.counters();
   lastReceived_ = now;
   restartHandshake(now);
 }
@@ -59,6 +60,27 @@ void ClientSession::lose(const std::string& reason) {
   state_ = State::Idle;
   ++counters_.timeouts;
   listener_.onLost(reason);
+}
+
+std::string ClientSession::handshakeFailure() const {
+  const FramingCounters& n = decoder_.counters();
+  const FramingCounters& s = framingAtStart_;
+  const std::uint64_t bytes = n.bytes - s.bytes, frames = n.frames - s.frames;
+  const std::uint64_t badChecksums = n.badChecksums - s.badChecksums;
+  const std::uint64_t skipped = n.skippedBytes - s.skippedBytes;
+  std::string why =
+      "no answer to the handshake within " + seconds(settings_.handshakeTimeout) + " s: ";
+  if (bytes == 0)
+    return why + "nothing came back (is the robot on, and the port or address right?)";
+  why += std::to_string(bytes) + " bytes came back, " + std::to_string(frames) +
+         " valid packets, " + std::to_string(badChecksums) + " bad checksums, " +
+         std::to_string(skipped) + " bytes in no packet";
+  // Noise without a packet: the line speed or the device is wrong. Packets that are not the
+  // SYNC answers: a robot that talks, to someone else.
+  if (frames == 0) return why + " (wrong baud rate, or not an ARCOS robot?)";
+  return why +
+         " (the robot sends packets but does not answer SYNC: is another client connected, "
+         "or does it need a reset?)";
 }
 
 void ClientSession::send(std::span<const std::uint8_t> bytes, double now) {
@@ -180,7 +202,7 @@ void ClientSession::tick(double now) {
     case State::Sync1:
     case State::Sync2:
       if (now - handshakeStart_ >= settings_.handshakeTimeout) {
-        lose("no answer to the handshake within " + seconds(settings_.handshakeTimeout) + " s");
+        lose(handshakeFailure());
       } else if (now - attemptStart_ >= settings_.syncRetry) {
         restartHandshake(now);
       }

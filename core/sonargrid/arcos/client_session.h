@@ -116,6 +116,8 @@ class ClientSession {
   void restartHandshake(double now);
   void send(std::span<const std::uint8_t> bytes, double now);
   void lose(const std::string& reason);
+  // Why the handshake failed, in words: what came back since it began and the likely cause.
+  std::string handshakeFailure() const;
   RobotParameters chooseRobot(const ServerInfo& info, bool valid);
 
   ClientSettings settings_;
@@ -127,6 +129,7 @@ class ClientSession {
   std::optional<RobotParameters> robot_;
   std::optional<SipTracker> tracker_;
   double handshakeStart_ = 0.0;
+  FramingCounters framingAtStart_;  // the decoder's counts when the handshake began
   double attemptStart_ = 0.0;
   double lastSent_ = 0.0;
   double lastReceived_ = 0.0;
