@@ -6,11 +6,15 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bad=0
-check() {  # folder, forbidden include prefix
-  local hits
-  hits=$(git grep -n "#include \"sonargrid/$2/" -- "core/sonargrid/$1/" || true)
+check() {  # folder, forbidden folder
+  [[ -d "core/sonargrid/$1" ]] || { echo "no folder core/sonargrid/$1" >&2; exit 1; }
+  local hits status=0
+  # Any spelling of an include of the folder: "sonargrid/X/…", <sonargrid/X/…>, "../X/…".
+  hits=$(git grep --untracked -nE "^[[:space:]]*#[[:space:]]*include[[:space:]]*[<\"](\.\./|sonargrid/)$2/" \
+    -- "core/sonargrid/$1/") || status=$?
+  if ((status > 1)); then exit "$status"; fi  # 1: no match; anything else: git failed
   if [[ -n "$hits" ]]; then
-    echo "core/sonargrid/$1 includes sonargrid/$2/:" >&2
+    echo "core/sonargrid/$1 includes $2/:" >&2
     echo "$hits" >&2
     bad=1
   fi
@@ -22,4 +26,4 @@ check engine rules
 check simd models
 check simd rules
 if ((bad)); then exit 1; fi
-echo "Layers: rules/ and models/ include neither each other nor upward"
+echo "Layers: models/ and rules/ include neither each other; engine/ and simd/ include neither"

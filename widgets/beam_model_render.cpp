@@ -298,7 +298,12 @@ BeamLayout beamLayout(QSize size, int columns) {
   // The panels a band has room for, in this order: the cone map, the axial profile, the
   // surface. A low band (compare mode stacked in the dock above the parameter panel) drops the
   // surface, then the profile, rather than squeezing three unreadable panels.
-  const int panels = rest >= 3 * kMinBeamPanelHeight ? 3 : rest >= 2 * kMinBeamPanelHeight ? 2 : 1;
+  // Each panel keeps kMinBeamPanelHeight: three where the smallest share (the profile's 26 % side
+  // by side, the surface's 27 % stacked) has it, two where the profile's 40 % of two has it.
+  const int smallestOfThree = l.stacked ? 27 : 26;
+  const int panels = rest * smallestOfThree / 100 >= kMinBeamPanelHeight ? 3
+                     : rest * 40 / 100 >= kMinBeamPanelHeight            ? 2
+                                                                         : 1;
   const int mapHeight = panels == 3   ? rest * (l.stacked ? 45 : 40) / 100
                         : panels == 2 ? rest * 60 / 100
                                       : rest;

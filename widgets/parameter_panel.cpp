@@ -408,7 +408,10 @@ void ParameterPanel::refreshRuleAvailability() {
 void ParameterPanel::rebuildRows() {
   for (QGroupBox* box : rowsHost_->findChildren<QGroupBox*>(Qt::FindDirectChildrenOnly)) delete box;
   rows_.clear();
-  dragging_ = false;  // a held slider went with its row
+  if (dragging_) {  // a held slider went with its row: its drag is over
+    dragging_ = false;
+    emit dragFinished();
+  }
   const ModelInfo& model = sensorModelInfo(settings_.model);
   const RuleInfo& rule = updateRuleInfo(settings_.rule);
   const QString caveat = qs(sensorModelCaveat(settings_.model));

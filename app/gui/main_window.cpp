@@ -452,7 +452,7 @@ void MainWindow::closeEvent(QCloseEvent* event) {
   if (rememberSettingsTimer_->isActive()) rememberSettings();
   QSettings s;
   s.setValue("window/geometry", saveGeometry());
-  s.setValue("window/state", saveState());
+  s.setValue("window/state", saveState(kLayoutVersion));
   autosave_->remove();  // a clean exit leaves nothing to recover
   QMainWindow::closeEvent(event);
 }

@@ -261,6 +261,12 @@ class MainWindow : public QMainWindow {
   // The docks right of the grid share one column this wide on first launch: 1280 − 330 leaves
   // the grid more than 60 % of the window.
   static constexpr int kRightColumnWidth = 330;
+  // The dock layout's version in the saved window state: a layout saved with another default
+  // (version 0: the beam view and the panel side by side right of the grid) gives way to this
+  // version's first-launch layout.
+  static constexpr int kLayoutVersion = 1;
+  // The Cell Inspector's height when it is shown in the row under the grid.
+  static constexpr int kInspectorHeight = 250;
   QTimer* summaryTimer_ = nullptr;
   static constexpr int kSummaryIntervalMs = 250;
   static constexpr int kPreviewFactor = 2;

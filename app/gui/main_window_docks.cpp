@@ -126,7 +126,7 @@ void MainWindow::createDocks() {
 void MainWindow::restoreWindowState() {
   QSettings s;
   if (!restoreGeometry(s.value("window/geometry").toByteArray())) resize(1280, 800);
-  if (restoreState(s.value("window/state").toByteArray())) return;
+  if (restoreState(s.value("window/state").toByteArray(), kLayoutVersion)) return;
   // First launch: the column right of the grid no wider than kRightColumnWidth, and the row
   // under it (the timeline and its tabs) no higher than its controls need.
   if (QDockWidget* beam = findChild<QDockWidget*>(QStringLiteral("beamModelDock")))

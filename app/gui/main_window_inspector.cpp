@@ -30,8 +30,20 @@ void MainWindow::createInspector() {
     splitDockWidget(timeline, dock, Qt::Horizontal);
     resizeDocks({timeline, dock}, {380, 900}, Qt::Horizontal);
   }
-  resizeDocks({dock}, {250}, Qt::Vertical);
+  resizeDocks({dock}, {kInspectorHeight}, Qt::Vertical);
   dock->hide();  // shown by the first Shift+click, or from the View menu
+  // The row it shares with the timeline is one row of controls high at first launch: shown, the
+  // inspector gets the height its plot and list need (once laid out, hence queued).
+  connect(dock, &QDockWidget::visibilityChanged, this, [this, dock](bool visible) {
+    if (!visible || dock->isFloating()) return;
+    QMetaObject::invokeMethod(
+        this,
+        [this, dock] {
+          if (dock->isVisible() && !dock->isFloating() && dock->height() < kInspectorHeight)
+            resizeDocks({dock}, {kInspectorHeight}, Qt::Vertical);
+        },
+        Qt::QueuedConnection);
+  });
 
   picker_ = new ui::CellPicker(view_);
   connect(picker_, &ui::CellPicker::picked, this, [this, dock](const Position& world) {

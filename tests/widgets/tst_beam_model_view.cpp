@@ -169,6 +169,20 @@ void TstBeamModelView::twoModelsStackInANarrowView() {
   // Its colour bar takes the view's whole height, as low as the view is, for its labels.
   QCOMPARE(one.colourBar.top(), 0);
   QCOMPARE(one.colourBar.height(), dock.height());
+  // At any size, a profile or surface that is drawn is at least kMinBeamPanelHeight high, and so
+  // is the cone map beside them.
+  for (const int columns : {1, 2})
+    for (const int w : {250, 800})
+      for (int h = 150; h <= 1000; h += 7) {
+        const BeamLayout l = beamLayout(QSize(w, h), columns);
+        for (std::size_t c = 0; c < l.map.size(); ++c) {
+          const QString where = QStringLiteral("%1 x %2, %3 scenes").arg(w).arg(h).arg(columns);
+          for (const QRect& panel : {l.profile[c], l.surface[c]})
+            QVERIFY2(panel.isEmpty() || panel.height() >= kMinBeamPanelHeight, qPrintable(where));
+          if (!l.profile[c].isEmpty())
+            QVERIFY2(l.map[c].height() >= kMinBeamPanelHeight, qPrintable(where));
+        }
+      }
 }
 
 void TstBeamModelView::murphyRegions() {
