@@ -14,7 +14,7 @@
 #include <optional>
 #include <vector>
 
-#include "sonargrid/mapper.h"
+#include "sonargrid/engine/mapper.h"
 
 class QPainter;
 

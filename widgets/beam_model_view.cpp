@@ -12,7 +12,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sonargrid/presets.h"
+#include "sonargrid/params/presets.h"
 
 namespace sg::ui {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "beam_model_render.h"
-#include "sonargrid/mapper.h"
+#include "sonargrid/engine/mapper.h"
 
 class QComboBox;
 class QDoubleSpinBox;

@@ -14,9 +14,9 @@
 #include <optional>
 
 #include "cell_trace_plot.h"
-#include "sonargrid/cell_trace.h"
-#include "sonargrid/dataset.h"
-#include "sonargrid/mapper.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/cell_trace.h"
+#include "sonargrid/engine/mapper.h"
 
 class QComboBox;
 class QLabel;

@@ -9,7 +9,7 @@
 #include <QObject>
 #include <optional>
 
-#include "sonargrid/grid_spec.h"
+#include "sonargrid/engine/grid_spec.h"
 
 class QWidget;
 

@@ -9,7 +9,7 @@
 #include <memory>
 #include <optional>
 
-#include "sonargrid/cell_trace.h"
+#include "sonargrid/engine/cell_trace.h"
 
 namespace sg::ui {
 

@@ -10,7 +10,7 @@
 #include <QSize>
 #include <vector>
 
-#include "sonargrid/occupancy_map.h"
+#include "sonargrid/engine/occupancy_map.h"
 
 class QPainter;
 

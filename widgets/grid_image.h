@@ -13,9 +13,9 @@
 #include <optional>
 #include <vector>
 
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/occupancy_map.h"
 #include "sonargrid/export/palette.h"
-#include "sonargrid/occupancy_map.h"
 #include "sonargrid/reference/reference_map.h"
 
 class QPainter;

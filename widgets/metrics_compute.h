@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/dataset.h"
-#include "sonargrid/mapper.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/mapper.h"
+#include "sonargrid/engine/occupancy_map.h"
 #include "sonargrid/metrics/reference_score.h"
-#include "sonargrid/occupancy_map.h"
 #include "sonargrid/reference/reference_map.h"
 #include "sonargrid/sweep/set_evaluation.h"
 

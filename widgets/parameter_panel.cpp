@@ -22,7 +22,7 @@
 #include <functional>
 #include <initializer_list>
 
-#include "sonargrid/presets.h"
+#include "sonargrid/params/presets.h"
 
 namespace sg::ui {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/mapper.h"
+#include "sonargrid/engine/mapper.h"
 
 class QComboBox;
 class QDoubleSpinBox;
@@ -62,7 +62,8 @@ class ParameterPanel : public QWidget {
  public slots:
   void showRemapTime(double milliseconds);
   void resetToDefaults();
-  // Applies the paper preset with this registry name (sonargrid/presets.h); false when unknown.
+  // Applies the paper preset with this registry name (sonargrid/params/presets.h); false when
+  // unknown.
   bool applyPreset(const QString& name);
 
  signals:

@@ -30,10 +30,10 @@
 #include <limits>
 #include <memory>
 
-#include "sonargrid/dataset.h"
-#include "sonargrid/mapper.h"
-#include "sonargrid/occupancy_map.h"
-#include "sonargrid/scan_source.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/mapper.h"
+#include "sonargrid/engine/occupancy_map.h"
+#include "sonargrid/engine/scan_source.h"
 
 namespace sg::ui {
 

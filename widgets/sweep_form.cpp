@@ -13,7 +13,7 @@
 #include <cmath>
 #include <set>
 
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
 #include "sonargrid/sweep/sweep_grid.h"
 #include "sonargrid/sweep/sweep_metrics.h"
 

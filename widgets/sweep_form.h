@@ -12,8 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "sonargrid/dataset.h"
-#include "sonargrid/mapper.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/reference/reference_map.h"
 
 class QHBoxLayout;

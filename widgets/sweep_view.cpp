@@ -19,7 +19,7 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
 #include "sonargrid/sweep/sweep_grid.h"
 #include "sonargrid/sweep/sweep_metrics.h"
 #include "sweep_view_charts.h"

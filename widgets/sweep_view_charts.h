@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/parameters.h"
+#include "sonargrid/params/parameters.h"
 
 class QChart;
 class QChartView;

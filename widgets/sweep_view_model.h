@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/parameters.h"
+#include "sonargrid/params/parameters.h"
 
 namespace sg::ui {
 

@@ -15,8 +15,8 @@
 #include <thread>
 #include <vector>
 
-#include "sonargrid/dataset.h"
-#include "sonargrid/parameters.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/params/parameters.h"
 #include "sonargrid/reference/reference_map.h"
 #include "sonargrid/sweep/set_evaluation.h"
 

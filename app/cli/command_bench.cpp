@@ -21,11 +21,11 @@
 #include <vector>
 
 #include "commands.h"
-#include "reproduce.h"
-#include "sonargrid/concurrency.h"
+#include "reproduce/reproduce.h"
+#include "sonargrid/base/concurrency.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/mapper.h"
 #include "sonargrid/sim/benchmark_workload.h"
 #include "thread_flags.h"
 

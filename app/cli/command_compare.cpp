@@ -16,10 +16,10 @@
 
 #include "commands.h"
 #include "map_options.h"
-#include "reproduce.h"
+#include "reproduce/reproduce.h"
 #include "score_flags.h"
 #include "sonargrid/base/atomic_file.h"
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
 #include "sonargrid/reference/read_reference.h"
 #include "thread_flags.h"
 

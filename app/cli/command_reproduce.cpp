@@ -17,7 +17,7 @@
 
 #include "commands.h"
 #include "map_options.h"
-#include "reproduce.h"
+#include "reproduce/reproduce.h"
 #include "sonargrid/base/atomic_file.h"
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/reference/read_reference.h"

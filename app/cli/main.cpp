@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "commands.h"
-#include "sonargrid/grid_spec.h"
+#include "sonargrid/engine/grid_spec.h"
 
 namespace {
 

@@ -10,10 +10,10 @@
 #include <string>
 
 #include "arguments.h"
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/mapper.h"
+#include "sonargrid/engine/occupancy_map.h"
 #include "sonargrid/io/log_options.h"
-#include "sonargrid/mapper.h"
-#include "sonargrid/occupancy_map.h"
 
 namespace sg::cli {
 

@@ -2,7 +2,7 @@
 // --threads and SONARGRID_THREADS (docs/cli.md, "Threads"): every command that maps takes them.
 
 #include "thread_flags.h"
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
 
 namespace sg::cli {
 

@@ -16,7 +16,7 @@
 #include <optional>
 
 #include "project.h"
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 
 class QUndoStack;
 

@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 #include "sonargrid/io/log_options.h"
 
 class QThread;

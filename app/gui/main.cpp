@@ -25,7 +25,7 @@
 #include "metrics_panel.h"
 #include "preferences.h"
 #include "project_file.h"
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
 #include "sonargrid/engine/sensor_model.h"
 #include "sonargrid/engine/update_rule.h"
 

@@ -30,7 +30,7 @@
 #include "parameter_panel.h"
 #include "reference_editing.h"
 #include "remap_controller.h"
-#include "robot_dock.h"
+#include "robot/robot_dock.h"
 #include "sonargrid/engine/sensor_model.h"
 #include "sonargrid/engine/update_rule.h"
 #include "sonargrid/io/log_reader.h"

@@ -15,9 +15,9 @@
 
 #include "grid_view.h"
 #include "project.h"
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/log_options.h"
-#include "sonargrid/mapper.h"
 #include "sonargrid/reference/reference_map.h"
 
 class QAction;

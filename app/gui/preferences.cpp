@@ -7,7 +7,7 @@
 #include <QSpinBox>
 #include <QVBoxLayout>
 
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
 
 namespace sg::app {
 

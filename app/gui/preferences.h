@@ -33,8 +33,8 @@ class Preference {
 };
 
 namespace preferences {
-// Threads mapping may use (core/sonargrid/concurrency.h); 0: automatic, i.e. SONARGRID_THREADS,
-// else the CPUs the process may run on.
+// Threads mapping may use (core/sonargrid/base/concurrency.h); 0: automatic, i.e.
+// SONARGRID_THREADS, else the CPUs the process may run on.
 inline constexpr Preference<int> kMappingThreads{"performance/mappingThreads", 0};
 }  // namespace preferences
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "grid_image.h"
-#include "sonargrid/mapper.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/reference/reference_map.h"
 
 namespace sg::app {

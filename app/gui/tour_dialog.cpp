@@ -17,7 +17,7 @@
 #include "main_window.h"
 #include "parameter_panel.h"
 #include "reference_editor.h"
-#include "sonargrid/presets.h"
+#include "sonargrid/params/presets.h"
 
 namespace sg::app {
 namespace {

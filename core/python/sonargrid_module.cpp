@@ -19,15 +19,15 @@
 #include <vector>
 
 #include "sonargrid/base/atomic_file.h"
+#include "sonargrid/base/concurrency.h"
 #include "sonargrid/base/log_error.h"
-#include "sonargrid/concurrency.h"
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/engine/sensor_model.h"
 #include "sonargrid/engine/update_rule.h"
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/io/csv_log.h"
 #include "sonargrid/io/log_reader.h"
-#include "sonargrid/mapper.h"
 #include "sonargrid/metrics/derivative_noise.h"
 #include "sonargrid/metrics/map_entropy.h"
 #include "sonargrid/metrics/reference_score.h"

@@ -19,10 +19,10 @@
 #include <iostream>
 #include <string>
 
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/carmen.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/mapper.h"
 #include "sonargrid/sim/benchmark_workload.h"
 
 namespace {

@@ -9,7 +9,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_workload.h"
-#include "sonargrid/mapper.h"
+#include "sonargrid/engine/mapper.h"
 
 namespace {
 

@@ -10,10 +10,10 @@
 #include <algorithm>
 #include <string>
 
+#include "sonargrid/engine/occupancy_map.h"
 #include "sonargrid/metrics/ideal_map.h"
 #include "sonargrid/metrics/path_comparison.h"
 #include "sonargrid/metrics/seeded_random.h"
-#include "sonargrid/occupancy_map.h"
 #include "sonargrid/reference/actual_position_grid.h"
 
 namespace {

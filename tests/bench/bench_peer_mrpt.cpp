@@ -33,8 +33,8 @@
 #include <vector>
 
 #include "bench_workload.h"
-#include "sonargrid/concurrency.h"
-#include "sonargrid/mapper.h"
+#include "sonargrid/base/concurrency.h"
+#include "sonargrid/engine/mapper.h"
 
 namespace {
 

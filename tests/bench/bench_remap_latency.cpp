@@ -44,8 +44,8 @@
 #include "metrics_panel.h"
 #include "parameter_panel.h"
 #include "remap_controller.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/mapper.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 // shared with `sonargrid-cli bench`), for bench_mapper (wall-clock medians), profile_remap (a
 // single-threaded driver for instruction counts under callgrind) and bench_peer_mrpt.
 
-#include "sonargrid/mapper.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/sim/benchmark_workload.h"
 
 namespace bench {

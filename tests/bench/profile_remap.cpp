@@ -34,11 +34,11 @@
 #include <vector>
 
 #include "bench_workload.h"
-#include "sonargrid/beam_tables.h"
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
+#include "sonargrid/engine/beam_tables.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/registry_hooks.h"
 #include "sonargrid/simd/lanes.h"
+#include "sonargrid/testing/registry_hooks.h"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 #include "sonargrid/io/log_reader.h"
 
 namespace logtest {

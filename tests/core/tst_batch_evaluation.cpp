@@ -7,8 +7,8 @@
 #include <cstring>
 #include <map>
 
-#include "sonargrid/concurrency.h"
-#include "sonargrid/mapper.h"
+#include "sonargrid/base/concurrency.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/sim/ray_sonar.h"
 #include "sonargrid/sweep/batch_evaluation.h"
 

@@ -5,8 +5,8 @@
 #include <QtTest>
 #include <algorithm>
 
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/mapper.h"
 #include "sonargrid/reference/reference_json.h"
 #include "sonargrid/sim/simulation.h"
 

@@ -6,9 +6,9 @@
 #include <QtTest>
 #include <cstring>
 
-#include "sonargrid/cell_trace.h"
+#include "sonargrid/engine/cell_trace.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/mapper.h"
 
 using namespace sg;
 

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The thread policy (core/sonargrid/concurrency.h): which count wins, how SONARGRID_THREADS is
+// The thread policy (core/sonargrid/base/concurrency.h): which count wins, how SONARGRID_THREADS is
 // read, that the default is the affinity mask's CPU count; and that every parallel path reports a
 // failure on any of its threads to the caller, never hanging and never ending in std::terminate.
-// Failures are injected by wrapping the real model or rule (sonargrid/registry_hooks.h) in one
-// that throws after some calls on a thread other than the test's, and by making a thread start
+// Failures are injected by wrapping the real model or rule (sonargrid/testing/registry_hooks.h) in
+// one that throws after some calls on a thread other than the test's, and by making a thread start
 // fail (testing::failThreadStartAfter). Each run is watched: a hang aborts the suite (so CI fails)
 // instead of blocking it.
 
@@ -20,13 +20,13 @@
 #include <system_error>
 #include <thread>
 
-#include "sonargrid/beam_tables.h"
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
+#include "sonargrid/engine/beam_tables.h"
+#include "sonargrid/engine/mapper.h"
+#include "sonargrid/engine/row_bands.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/mapper.h"
-#include "sonargrid/registry_hooks.h"
-#include "sonargrid/row_bands.h"
 #include "sonargrid/sweep/parameter_sweep.h"
+#include "sonargrid/testing/registry_hooks.h"
 
 using namespace sg;
 

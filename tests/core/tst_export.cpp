@@ -18,9 +18,9 @@
 #include <string>
 #include <vector>
 
+#include "sonargrid/engine/occupancy_map.h"
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/export/palette.h"
-#include "sonargrid/occupancy_map.h"
 
 namespace sg {
 // Readable QCOMPARE failures (found by argument-dependent lookup).

@@ -23,11 +23,11 @@
 #include <limits>
 #include <numbers>
 
-#include "sonargrid/concurrency.h"
-#include "sonargrid/mapper.h"
+#include "sonargrid/base/concurrency.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/models/cone_model.h"
-#include "sonargrid/registry_hooks.h"
 #include "sonargrid/rules/rule_classes.h"
+#include "sonargrid/testing/registry_hooks.h"
 
 using namespace sg;
 

@@ -17,13 +17,13 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/beam_tables.h"
-#include "sonargrid/dataset.h"
-#include "sonargrid/grid_spec.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/data/pose.h"
+#include "sonargrid/data/sonar_ring.h"
+#include "sonargrid/engine/beam_tables.h"
+#include "sonargrid/engine/grid_spec.h"
 #include "sonargrid/models/cone_raster.h"
-#include "sonargrid/parameters.h"
-#include "sonargrid/pose.h"
-#include "sonargrid/sonar_ring.h"
+#include "sonargrid/params/parameters.h"
 
 Q_DECLARE_METATYPE(sg::Dataset)
 

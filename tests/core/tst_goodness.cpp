@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/mapper.h"
 #include "sonargrid/metrics/derivative_noise.h"
 #include "sonargrid/metrics/two_run_comparison.h"
 #include "sonargrid/metrics/vsdns.h"

@@ -8,7 +8,7 @@
 #include <cstring>
 #include <set>
 
-#include "sonargrid/grid.h"
+#include "sonargrid/engine/grid.h"
 
 using namespace sg;
 

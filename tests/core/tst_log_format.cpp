@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "log_fixtures.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/csv_layout.h"
 #include "sonargrid/io/csv_log.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/io/text_lines.h"
-#include "sonargrid/mapper.h"
 #include "writer_fixtures.h"
 
 Q_DECLARE_METATYPE(sg::LogFormat)

@@ -12,11 +12,11 @@
 #include <thread>
 #include <utility>
 
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
+#include "sonargrid/engine/mapper.h"
+#include "sonargrid/engine/scan_source.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/mapper.h"
 #include "sonargrid/rules/rule_classes.h"
-#include "sonargrid/scan_source.h"
 
 using namespace sg;
 

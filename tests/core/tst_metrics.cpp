@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/mapper.h"
 #include "sonargrid/metrics/grid_path_planner.h"
 #include "sonargrid/metrics/ideal_map.h"
 #include "sonargrid/metrics/index_of_performance.h"

@@ -12,8 +12,8 @@
 #include "sonargrid/engine/sensor_model.h"
 #include "sonargrid/engine/update_rule.h"
 #include "sonargrid/models/cone_raster.h"
-#include "sonargrid/registry_hooks.h"
 #include "sonargrid/simd/lanes.h"
+#include "sonargrid/testing/registry_hooks.h"
 
 using namespace sg;
 

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <set>
 
-#include "sonargrid/presets.h"
+#include "sonargrid/params/presets.h"
 
 using namespace sg;
 

@@ -8,7 +8,7 @@
 #include <limits>
 #include <vector>
 
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
 #include "sonargrid/sweep/rank_correlation.h"
 
 using sg::RankCorrelationError;

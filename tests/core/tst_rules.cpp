@@ -9,10 +9,10 @@
 #include <limits>
 
 #include "sonargrid/engine/update_rule.h"
-#include "sonargrid/registry_hooks.h"
 #include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
 #include "sonargrid/simd/lanes.h"
+#include "sonargrid/testing/registry_hooks.h"
 
 using namespace sg;
 

@@ -7,7 +7,7 @@
 #include <atomic>
 #include <thread>
 
-#include "sonargrid/scan_source.h"
+#include "sonargrid/engine/scan_source.h"
 
 using namespace sg;
 

@@ -15,7 +15,7 @@
 #include <string>
 
 #include "sonargrid/base/log_error.h"
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 #include "sonargrid/io/sglog.h"
 
 Q_DECLARE_METATYPE(sg::Dataset)

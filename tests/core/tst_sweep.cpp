@@ -6,8 +6,8 @@
 #include <set>
 #include <tuple>
 
-#include "sonargrid/concurrency.h"
-#include "sonargrid/mapper.h"
+#include "sonargrid/base/concurrency.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/sim/ray_sonar.h"
 #include "sonargrid/sweep/optimal_sets.h"
 #include "sonargrid/sweep/parameter_sweep.h"

@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 #include "sonargrid/io/sglog.h"
 
 namespace writer_fixtures {

@@ -19,10 +19,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/mapper.h"
 
 namespace {
 

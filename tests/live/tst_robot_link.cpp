@@ -13,9 +13,9 @@
 
 #include "sonargrid/arcos/decoder.h"
 #include "sonargrid/arcos/messages.h"
+#include "sonargrid/engine/scan_source.h"
 #include "sonargrid/live/arcos_server.h"
 #include "sonargrid/live/robot_link.h"
-#include "sonargrid/scan_source.h"
 #include "sonargrid/sim/ray_sonar.h"
 
 namespace arcos = sg::arcos;

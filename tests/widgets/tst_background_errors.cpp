@@ -2,13 +2,13 @@
 // No exception leaves a worker (issue 49: "No `terminate` path"). The sweep view once died with
 // "terminate called after throwing an instance of 'sg::ParameterError'" when a HIMM decrement was
 // swept over a fraction. Here every sensor model the registry makes is wrapped (the core's test
-// hook, sonargrid/registry_hooks.h) so that, while armed, each beam it rasterises throws that same
-// ParameterError on whatever thread maps it. Each background job of the window then runs once:
-// the re-map, the metrics panel's goodness measures, the cell inspector's trace, the comparison
-// table's pinned row, the sweep view, the log loader (a file that cannot be read) and the live
-// robot's map. Each must show the error, and the document must stay as it was: the same log,
-// reference, settings, cells, pinned rows, undo history and modified flag, with the last good map
-// still on screen and a re-map working once the fault is gone.
+// hook, sonargrid/testing/registry_hooks.h) so that, while armed, each beam it rasterises throws
+// that same ParameterError on whatever thread maps it. Each background job of the window then runs
+// once: the re-map, the metrics panel's goodness measures, the cell inspector's trace, the
+// comparison table's pinned row, the sweep view, the log loader (a file that cannot be read) and
+// the live robot's map. Each must show the error, and the document must stay as it was: the same
+// log, reference, settings, cells, pinned rows, undo history and modified flag, with the last good
+// map still on screen and a re-map working once the fault is gone.
 
 #include <QFile>
 #include <QLabel>
@@ -28,10 +28,10 @@
 #include "main_window.h"
 #include "metrics_panel.h"
 #include "remap_controller.h"
-#include "robot_dock.h"
-#include "robot_session.h"
-#include "sonargrid/parameters.h"
-#include "sonargrid/registry_hooks.h"
+#include "robot/robot_dock.h"
+#include "robot/robot_session.h"
+#include "sonargrid/params/parameters.h"
+#include "sonargrid/testing/registry_hooks.h"
 #include "sweep_view.h"
 
 using namespace sg;

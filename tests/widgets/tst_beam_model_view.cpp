@@ -13,7 +13,7 @@
 #include <cmath>
 
 #include "beam_model_view.h"
-#include "sonargrid/presets.h"
+#include "sonargrid/params/presets.h"
 
 using namespace sg;
 using namespace sg::ui;

@@ -14,7 +14,7 @@
 #include "cell_inspector.h"
 #include "grid_view.h"
 #include "main_window.h"
-#include "sonargrid/cell_trace.h"
+#include "sonargrid/engine/cell_trace.h"
 #include "sonargrid/io/sglog.h"
 #include "timeline.h"
 

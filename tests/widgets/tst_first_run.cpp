@@ -24,7 +24,7 @@
 #include "main_window.h"
 #include "parameter_panel.h"
 #include "sonargrid/metrics/reference_score.h"
-#include "sonargrid/presets.h"
+#include "sonargrid/params/presets.h"
 #include "tour_dialog.h"
 
 using namespace sg;

@@ -29,7 +29,7 @@
 #include "parameter_panel.h"
 #include "project_file.h"
 #include "remap_controller.h"
-#include "robot_dock.h"
+#include "robot/robot_dock.h"
 #include "sonargrid/reference/reference_json.h"
 #include "sweep_view.h"
 #include "timeline.h"

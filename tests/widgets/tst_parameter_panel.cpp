@@ -14,7 +14,7 @@
 #include <QStandardItemModel>
 
 #include "parameter_panel.h"
-#include "sonargrid/presets.h"
+#include "sonargrid/params/presets.h"
 
 using namespace sg;
 using sg::ui::ParameterPanel;

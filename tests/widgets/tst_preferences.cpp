@@ -14,7 +14,7 @@
 
 #include "main_window.h"
 #include "preferences.h"
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
 
 using namespace sg;
 

@@ -7,8 +7,8 @@
 #include <random>
 
 #include "remap_controller.h"
+#include "sonargrid/engine/scan_source.h"
 #include "sonargrid/io/sglog.h"
-#include "sonargrid/scan_source.h"
 
 using namespace sg;
 using namespace sg::ui;

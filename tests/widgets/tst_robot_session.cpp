@@ -22,10 +22,10 @@
 #include "grid_view.h"
 #include "main_window.h"
 #include "remap_controller.h"
-#include "robot_dock.h"
-#include "robot_session.h"
+#include "robot/robot_dock.h"
+#include "robot/robot_session.h"
+#include "robot/teleop_keys.h"
 #include "sonargrid/io/sglog.h"
-#include "teleop_keys.h"
 #include "timeline.h"
 
 using namespace sg;

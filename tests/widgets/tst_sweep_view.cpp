@@ -22,7 +22,7 @@
 #include "main_window.h"
 #include "main_window_sweep.h"
 #include "project_file.h"
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/reference/read_reference.h"
 #include "sonargrid/sweep/sweep_grid.h"

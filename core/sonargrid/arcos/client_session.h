@@ -19,7 +19,7 @@
 #include "sonargrid/arcos/messages.h"
 #include "sonargrid/arcos/robot_params.h"
 #include "sonargrid/arcos/sip_tracker.h"
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 
 namespace sg::arcos {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "sonargrid/sonar_ring.h"
+#include "sonargrid/data/sonar_ring.h"
 
 namespace sg::arcos {
 

@@ -12,7 +12,7 @@
 
 #include "sonargrid/arcos/messages.h"
 #include "sonargrid/arcos/robot_params.h"
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 
 namespace sg::arcos {
 

@@ -16,7 +16,7 @@
 #include "sonargrid/arcos/decoder.h"
 #include "sonargrid/arcos/messages.h"
 #include "sonargrid/arcos/robot_params.h"
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 #include "sonargrid/sim/differential_drive.h"
 #include "sonargrid/sim/ray_sonar.h"
 

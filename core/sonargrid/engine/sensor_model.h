@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/beam_tables.h"
-#include "sonargrid/footprint.h"
-#include "sonargrid/grid_spec.h"
-#include "sonargrid/parameters.h"
+#include "sonargrid/engine/beam_tables.h"
+#include "sonargrid/engine/footprint.h"
+#include "sonargrid/engine/grid_spec.h"
+#include "sonargrid/params/parameters.h"
 
 namespace sg {
 

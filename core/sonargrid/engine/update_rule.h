@@ -17,10 +17,10 @@
 #include <utility>
 #include <vector>
 
-#include "sonargrid/footprint.h"
-#include "sonargrid/grid.h"
-#include "sonargrid/occupancy_map.h"
-#include "sonargrid/parameters.h"
+#include "sonargrid/engine/footprint.h"
+#include "sonargrid/engine/grid.h"
+#include "sonargrid/engine/occupancy_map.h"
+#include "sonargrid/params/parameters.h"
 
 namespace sg {
 

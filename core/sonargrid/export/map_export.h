@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "sonargrid/engine/occupancy_map.h"
 #include "sonargrid/export/palette.h"
-#include "sonargrid/occupancy_map.h"
 
 namespace sg {
 

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 #include "sonargrid/io/log_options.h"
 
 namespace sg {

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "sonargrid/base/log_error.h"
+#include "sonargrid/data/sonar_ring.h"
 #include "sonargrid/io/csv_layout.h"
-#include "sonargrid/sonar_ring.h"
 
 namespace sg {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 #include "sonargrid/io/log_options.h"
 
 namespace sg {

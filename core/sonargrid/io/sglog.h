@@ -9,7 +9,7 @@
 #include <string_view>
 
 #include "sonargrid/base/log_error.h"
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 #include "sonargrid/io/log_options.h"
 
 namespace sg {

@@ -13,7 +13,7 @@
 #include <limits>
 #include <string>
 
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 
 namespace sg {
 

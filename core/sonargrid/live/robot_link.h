@@ -17,7 +17,7 @@
 #include <span>
 
 #include "sonargrid/arcos/client_session.h"
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 #include "sonargrid/live/link_address.h"
 
 namespace sg::live {

@@ -11,8 +11,8 @@
 #include <span>
 #include <utility>
 
-#include "sonargrid/pose.h"
-#include "sonargrid/sonar_ring.h"
+#include "sonargrid/data/pose.h"
+#include "sonargrid/data/sonar_ring.h"
 
 namespace sg::live {
 

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sonargrid/grid_spec.h"
+#include "sonargrid/engine/grid_spec.h"
 
 namespace sg {
 

@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sonargrid/occupancy_map.h"
+#include "sonargrid/engine/occupancy_map.h"
 #include "sonargrid/reference/actual_position_grid.h"
 #include "sonargrid/reference/reference_map.h"
 

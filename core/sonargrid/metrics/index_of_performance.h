@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/occupancy_map.h"
+#include "sonargrid/engine/occupancy_map.h"
 #include "sonargrid/reference/actual_position_grid.h"
 
 namespace sg {

@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <optional>
 
-#include "sonargrid/occupancy_map.h"
+#include "sonargrid/engine/occupancy_map.h"
 
 namespace sg {
 

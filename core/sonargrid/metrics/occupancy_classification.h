@@ -9,8 +9,8 @@
 #include <cstddef>
 #include <optional>
 
+#include "sonargrid/engine/occupancy_map.h"
 #include "sonargrid/metrics/ideal_map.h"
-#include "sonargrid/occupancy_map.h"
 
 namespace sg {
 

@@ -18,8 +18,8 @@
 #include <cstdint>
 #include <optional>
 
+#include "sonargrid/engine/occupancy_map.h"
 #include "sonargrid/metrics/ideal_map.h"
-#include "sonargrid/occupancy_map.h"
 
 namespace sg {
 

@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "sonargrid/engine/occupancy_map.h"
 #include "sonargrid/metrics/ideal_map.h"
 #include "sonargrid/metrics/index_of_performance.h"
 #include "sonargrid/metrics/map_agreement.h"
 #include "sonargrid/metrics/occupancy_classification.h"
 #include "sonargrid/metrics/path_comparison.h"
-#include "sonargrid/occupancy_map.h"
 #include "sonargrid/reference/reference_map.h"
 
 namespace sg {

@@ -8,7 +8,7 @@
 
 #include <cstddef>
 
-#include "sonargrid/occupancy_map.h"
+#include "sonargrid/engine/occupancy_map.h"
 
 namespace sg {
 

@@ -15,7 +15,7 @@
 #include <optional>
 #include <vector>
 
-#include "sonargrid/mapper.h"
+#include "sonargrid/engine/mapper.h"
 
 namespace sg {
 

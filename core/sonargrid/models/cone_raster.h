@@ -14,10 +14,10 @@
 #include <utility>
 #include <vector>
 
-#include "sonargrid/beam_tables.h"
-#include "sonargrid/footprint.h"
-#include "sonargrid/grid_spec.h"
-#include "sonargrid/pose.h"
+#include "sonargrid/data/pose.h"
+#include "sonargrid/engine/beam_tables.h"
+#include "sonargrid/engine/footprint.h"
+#include "sonargrid/engine/grid_spec.h"
 
 // The span of each row is computed inside forEachRow's loop: inlined (GCC left it out of line in
 // one model's file, a call per row).

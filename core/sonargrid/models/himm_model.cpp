@@ -10,8 +10,8 @@
 #include <span>
 #include <vector>
 
+#include "sonargrid/engine/grid.h"
 #include "sonargrid/engine/update_rule.h"
-#include "sonargrid/grid.h"
 #include "sonargrid/models/cone_model.h"
 #include "sonargrid/models/model_classes.h"
 

@@ -5,7 +5,7 @@
 
 #include "sonargrid/models/cone_model.h"
 #include "sonargrid/models/model_classes.h"
-#include "sonargrid/registry_hooks.h"
+#include "sonargrid/testing/registry_hooks.h"
 
 namespace sg {
 namespace {

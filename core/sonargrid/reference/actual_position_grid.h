@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sonargrid/grid_spec.h"
+#include "sonargrid/engine/grid_spec.h"
 #include "sonargrid/reference/reference_map.h"
 
 namespace sg {

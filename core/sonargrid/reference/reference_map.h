@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "sonargrid/base/length_unit.h"
-#include "sonargrid/grid_spec.h"
+#include "sonargrid/engine/grid_spec.h"
 
 namespace sg {
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "sonargrid/base/log_error.h"
-#include "sonargrid/occupancy_map.h"
+#include "sonargrid/engine/occupancy_map.h"
 #include "sonargrid/reference/reference_map.h"
 
 namespace sg {

@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "sonargrid/registry_hooks.h"
 #include "sonargrid/rules/cell_updates.h"
 #include "sonargrid/rules/rule_classes.h"
+#include "sonargrid/testing/registry_hooks.h"
 
 namespace sg {
 namespace {

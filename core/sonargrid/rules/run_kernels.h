@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <span>
 
-#include "sonargrid/footprint.h"
+#include "sonargrid/engine/footprint.h"
 #include "sonargrid/rules/rule_classes.h"
 
 namespace sg::runs {

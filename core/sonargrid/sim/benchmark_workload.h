@@ -15,10 +15,10 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/dataset.h"
-#include "sonargrid/grid_spec.h"
-#include "sonargrid/mapper.h"
-#include "sonargrid/pose.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/data/pose.h"
+#include "sonargrid/engine/grid_spec.h"
+#include "sonargrid/engine/mapper.h"
 
 namespace sg::workload {
 

@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "sonargrid/pose.h"
+#include "sonargrid/data/pose.h"
 #include "sonargrid/sim/ray_sonar.h"
 
 namespace sg {

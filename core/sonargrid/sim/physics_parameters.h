@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/parameters.h"
+#include "sonargrid/data/sonar_ring.h"
+#include "sonargrid/params/parameters.h"
 #include "sonargrid/sim/differential_drive.h"
 #include "sonargrid/sim/physics_defaults.h"
 #include "sonargrid/sim/ray_sonar.h"
-#include "sonargrid/sonar_ring.h"
 
 namespace sg {
 

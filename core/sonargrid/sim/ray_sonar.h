@@ -17,10 +17,10 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/dataset.h"
-#include "sonargrid/pose.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/data/pose.h"
+#include "sonargrid/data/sonar_ring.h"
 #include "sonargrid/sim/physics_defaults.h"
-#include "sonargrid/sonar_ring.h"
 
 namespace sg {
 

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "sonargrid/pose.h"
+#include "sonargrid/data/pose.h"
 #include "sonargrid/sim/differential_drive.h"
 #include "sonargrid/sim/ray_sonar.h"
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/dataset.h"
+#include "sonargrid/data/dataset.h"
 #include "sonargrid/reference/reference_map.h"
 #include "sonargrid/sim/differential_drive.h"
 #include "sonargrid/sim/ray_sonar.h"

@@ -14,8 +14,8 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "sonargrid/concurrency.h"
-#include "sonargrid/mapper.h"
+#include "sonargrid/base/concurrency.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/models/cone_raster.h"
 #include "sonargrid/models/parameterized_shape.h"
 #include "sonargrid/rules/cell_updates.h"

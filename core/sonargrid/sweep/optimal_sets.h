@@ -30,7 +30,7 @@
 #include <span>
 #include <vector>
 
-#include "sonargrid/parameters.h"
+#include "sonargrid/params/parameters.h"
 #include "sonargrid/sweep/parameter_sweep.h"
 
 namespace sg {

@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "sonargrid/dataset.h"
-#include "sonargrid/grid_spec.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/grid_spec.h"
 #include "sonargrid/metrics/derivative_noise.h"
 #include "sonargrid/metrics/two_run_comparison.h"
-#include "sonargrid/parameters.h"
+#include "sonargrid/params/parameters.h"
 
 namespace sg {
 

@@ -8,7 +8,7 @@
 #include <numeric>
 #include <string>
 
-#include "sonargrid/concurrency.h"
+#include "sonargrid/base/concurrency.h"
 #include "sonargrid/metrics/seeded_random.h"
 
 namespace sg {

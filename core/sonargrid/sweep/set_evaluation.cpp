@@ -6,8 +6,8 @@
 #include <mutex>
 #include <stdexcept>
 
-#include "sonargrid/concurrency.h"
-#include "sonargrid/mapper.h"
+#include "sonargrid/base/concurrency.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/sweep/batch_evaluation.h"
 
 namespace sg {

@@ -13,14 +13,14 @@
 #include <set>
 #include <vector>
 
-#include "sonargrid/dataset.h"
-#include "sonargrid/grid_spec.h"
+#include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/grid_spec.h"
 #include "sonargrid/metrics/derivative_noise.h"
 #include "sonargrid/metrics/map_entropy.h"
 #include "sonargrid/metrics/reference_score.h"
 #include "sonargrid/metrics/two_run_comparison.h"
 #include "sonargrid/metrics/vsdns.h"
-#include "sonargrid/parameters.h"
+#include "sonargrid/params/parameters.h"
 #include "sonargrid/sweep/parameter_sweep.h"
 
 namespace sg {

@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
-#include "sonargrid/grid_spec.h"
-#include "sonargrid/parameters.h"
+#include "sonargrid/engine/grid_spec.h"
+#include "sonargrid/params/parameters.h"
 
 namespace sg {
 
