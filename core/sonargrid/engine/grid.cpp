@@ -169,6 +169,10 @@ bool Grid::growToCover(const Position& lo, const Position& hi) {
   GridSpec grown = spec_;
   grown.origin = Position(shiftedOrigin(spec_.origin.x(), left, c),
                           shiftedOrigin(spec_.origin.y(), bottom, c));
+  // Cells are still counted from where the grid started (GridSpec::base).
+  if (!grown.base) grown.base = spec_.origin;
+  grown.baseX = spec_.baseX + static_cast<int>(left);
+  grown.baseY = spec_.baseY + static_cast<int>(bottom);
   grown.width = static_cast<int>(w + left + right);
   grown.height = static_cast<int>(h + bottom + top);
   const auto dx = static_cast<std::size_t>(left), dy = static_cast<std::size_t>(bottom);

@@ -46,6 +46,16 @@ struct GridSpec {
   double cellSize = 0.05;  // metres
   int width = 0;
   int height = 0;
+  // Where the models count cells from. A grid that grew (Grid::growToCover) goes on counting from
+  // the origin it had before: `base` is that origin, and (baseX, baseY) is the cell of this grid
+  // that was its cell (0, 0). A position counted from a moved origin can land, to the last bit,
+  // on the other side of a cell boundary (the simulated logs' poses and ranges fall on them); so
+  // counted, a reading meets the same cells whether the grid grew on the way or was that large
+  // from the start (Mapper::append: a live map is bit-identical to a batch map on its limits).
+  // A grid that never grew counts from its origin.
+  std::optional<Position> base;
+  int baseX = 0;
+  int baseY = 0;
 
   std::size_t cellCount() const {
     return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
@@ -62,8 +72,18 @@ struct GridSpec {
   // outside every grid (kMaxGridCells < 2^28 per side), and the sum or difference of two indices
   // still fits an int.
   CellIndex worldToCell(const Position& p) const {
-    return {cellCoordinate((p.x() - origin.x()) / cellSize),
-            cellCoordinate((p.y() - origin.y()) / cellSize)};
+    const Counted at = counted(p);
+    return {cellCoordinate(at.u) + at.shiftX, cellCoordinate(at.v) + at.shiftY};
+  }
+  // A position in cells counted from the base (u, v: their bits do not depend on where the origin
+  // is now), and what to add to a whole cell of them to index this grid.
+  struct Counted {
+    double u, v;
+    int shiftX, shiftY;
+  };
+  Counted counted(const Position& p) const {
+    const Position& b = base ? *base : origin;
+    return {(p.x() - b.x()) / cellSize, (p.y() - b.y()) / cellSize, baseX, baseY};
   }
   static int cellCoordinate(double cells) {
     constexpr double kFar = 1 << 28;

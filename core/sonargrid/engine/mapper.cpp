@@ -450,7 +450,8 @@ bool Mapper::integrateBands(const std::vector<Beam>& beams, const std::atomic<bo
   const GridSpec& spec = grid_.spec();
   const double reachRows = reach / spec.cellSize + 4.0;
   auto farFrom = [&](const RowWindow& band, const Beam& beam) {
-    const double row = (beam.sensor.y() - spec.origin.y()) / spec.cellSize;
+    const GridSpec::Counted at = spec.counted(beam.sensor.position);
+    const double row = at.v + at.shiftY;
     // (a NaN row goes on, as on one thread)
     return row < band.begin - reachRows || row > band.end + reachRows;
   };

@@ -17,7 +17,8 @@ std::vector<double> estimatedRowWork(std::span<const Beam> beams, const GridSpec
     if (!b.echo() && !writesWithoutEcho) continue;
     const double metres = std::min(b.echo() ? b.range : b.maxRange, reachCap);
     const double r = metres / grid.cellSize;
-    const double y = (b.sensor.y() - grid.origin.y()) / grid.cellSize;
+    const GridSpec::Counted at = grid.counted(b.sensor.position);
+    const double y = at.v + at.shiftY;
     if (!(r > 0.0) || !std::isfinite(y)) continue;  // nothing, or a pose no row can hold
     const double lo = std::clamp(std::floor(y - r), 0.0, static_cast<double>(height));
     const double hi = std::clamp(std::floor(y + r) + 1.0, 0.0, static_cast<double>(height));

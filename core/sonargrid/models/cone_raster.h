@@ -185,15 +185,17 @@ template <bool kRound = false, bool kSpanLanes = false, class Reserve, class Row
                                                   const BeamTables& tables, Reserve&& reserve,
                                                   RowFn&& row, RowWindow window = {}) {
   const double c = grid.cellSize;
-  const double u = (sensor.x() - grid.origin.x()) / c;
-  const double v = (sensor.y() - grid.origin.y()) / c;
+  // Counted from the grid's base (GridSpec::base): the same bits however the grid grew.
+  const GridSpec::Counted at = grid.counted(sensor.position);
+  const double u = at.u;
+  const double v = at.v;
   const double fu = std::floor(u);
   const double fv = std::floor(v);
   const int q = tables.subdivisions();
   const int qx = std::min(q - 1, static_cast<int>((u - fu) * q));
   const int qy = std::min(q - 1, static_cast<int>((v - fv) * q));
-  const int iu = static_cast<int>(fu);
-  const int iv = static_cast<int>(fv);
+  const int iu = static_cast<int>(fu) + at.shiftX;
+  const int iv = static_cast<int>(fv) + at.shiftY;
   // The apex the tables assume: the centre of the sensor's sub-cell, in cell units of its cell.
   const double ax = (qx + 0.5) / q;
   const double ay = (qy + 0.5) / q;

@@ -116,8 +116,11 @@ inline bool inGrid(int x, int y, const GridSpec& grid) {
 template <class Emit>
 void traceAxis(const Beam& beam, double length, const GridSpec& grid, Emit&& emit) {
   const double c = grid.cellSize;
-  const double u0 = (beam.sensor.x() - grid.origin.x()) / c;
-  const double v0 = (beam.sensor.y() - grid.origin.y()) / c;
+  // Counted from the grid's base (GridSpec::base): the same cells however the grid grew; the
+  // walk runs in those counts, and each cell is shifted into the grid as it is emitted.
+  const GridSpec::Counted at = grid.counted(beam.sensor.position);
+  const double u0 = at.u;
+  const double v0 = at.v;
   const double du = std::cos(beam.sensor.heading) * length / c;
   const double dv = std::sin(beam.sensor.heading) * length / c;
   int ix = static_cast<int>(std::floor(u0));
@@ -134,7 +137,7 @@ void traceAxis(const Beam& beam, double length, const GridSpec& grid, Emit&& emi
   const int steps = std::abs(endX - ix) + std::abs(endY - iy);
   emit.reserve(static_cast<std::size_t>(steps) + 1);
   for (int k = 0; k < steps; ++k) {
-    emit(ix, iy, false);
+    emit(ix + at.shiftX, iy + at.shiftY, false);
     const bool alongX = tMaxX < tMaxY;
     ix += alongX ? stepX : 0;
     iy += alongX ? 0 : stepY;
@@ -142,7 +145,7 @@ void traceAxis(const Beam& beam, double length, const GridSpec& grid, Emit&& emi
     tMaxX = alongX ? nextX : tMaxX;
     tMaxY = alongX ? tMaxY : nextY;
   }
-  emit(ix, iy, true);
+  emit(ix + at.shiftX, iy + at.shiftY, true);
 }
 
 }  // namespace
