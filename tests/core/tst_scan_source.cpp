@@ -5,6 +5,7 @@
 
 #include <QtTest>
 #include <atomic>
+#include <memory>
 #include <thread>
 
 #include "sonargrid/engine/scan_source.h"
@@ -45,6 +46,7 @@ class TstScanSource : public QObject {
   void refusals();
   void readingOrder();
   void readerSeesWholeScansWhileAWriterAppends();
+  void viewIsTheCompleteLog();
 };
 
 void TstScanSource::loadedLogIsComplete() {
@@ -172,6 +174,36 @@ void TstScanSource::readerSeesWholeScansWhileAWriterAppends() {
   writer.join();
   QCOMPARE(seen, std::size_t{3000});
   QVERIFY(reads >= 1);
+}
+
+void TstScanSource::viewIsTheCompleteLog() {
+  // A loaded log shared with its source: the source reads the log's own scans (no copy) and its
+  // view is the log itself, the same object each time.
+  Dataset d;
+  d.name = "log";
+  d.ring = SonarRing::pioneer3dx();
+  d.scans = scans(0, 4);
+  const auto log = std::make_shared<const Dataset>(d);
+  const ScanSource loaded(log);
+  QVERIFY(loaded.complete());
+  QCOMPARE(loaded.size(), std::size_t{4});
+  QCOMPARE(&loaded.prefix()[2], &log->scans[2]);
+  QCOMPARE(loaded.view().get(), log.get());
+  QVERIFY(ScanSource(std::shared_ptr<const Dataset>()).view()->scans.empty());
+
+  // A live source: the scans so far, copied once per growth.
+  ScanSource live("live", SonarRing::pioneer3dx());
+  QVERIFY(live.view()->scans.empty());
+  live.append(scans(0, 3));
+  const auto first = live.view();
+  QCOMPARE(first->scans.size(), std::size_t{3});
+  QVERIFY(*first == live.dataset(3));
+  QCOMPARE(live.view().get(), first.get());  // nothing came: the same view
+  live.append(scans(3, 5));
+  const auto second = live.view();
+  QCOMPARE(second->scans.size(), std::size_t{5});
+  QVERIFY(isScan(second->scans[4], 4));
+  QCOMPARE(first->scans.size(), std::size_t{3});  // a view taken before is never changed
 }
 
 QTEST_GUILESS_MAIN(TstScanSource)

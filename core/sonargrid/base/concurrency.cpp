@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "sonargrid/base/concurrency.h"
 
+#include <algorithm>
 #include <atomic>
 #include <charconv>
+#include <chrono>
+#include <condition_variable>
 #include <cstdlib>
+#include <deque>
 #include <exception>
 #include <mutex>
 #include <system_error>
@@ -102,8 +106,100 @@ unsigned threadCount() {
   return count != 0 ? count : automaticThreadCount();
 }
 
+namespace {
+
+// The share of the ThreadLease this thread holds; 0: none.
+thread_local unsigned leasedHere = 0;
+
+struct Budget {
+  std::mutex mutex;
+  std::condition_variable freed;
+  unsigned leased = 0;            // every class
+  unsigned leasedBackground = 0;  // of those, background leases
+  std::uint64_t nextTicket = 0;
+  std::deque<std::uint64_t> waiting[2];  // tickets in the order they came, by class
+};
+
+Budget& budget() {
+  static Budget b;
+  return b;
+}
+
+// The threads a lease of class `c` may take now.
+unsigned freeFor(const Budget& b, LeaseClass c, unsigned capacity) {
+  const unsigned all = capacity > b.leased ? capacity - b.leased : 0;
+  if (c == LeaseClass::Interactive) return all;
+  if (!b.waiting[int(LeaseClass::Interactive)].empty()) return 0;
+  const unsigned share = capacity > 1 ? capacity - 1 : 1;
+  return std::min(all, share > b.leasedBackground ? share - b.leasedBackground : 0u);
+}
+
+}  // namespace
+
 unsigned parallelThreads() {
-  return insideParallelRun ? 1u : threadCount();
+  if (insideParallelRun) return 1u;
+  return leasedHere > 0 ? leasedHere : threadCount();
+}
+
+ThreadLease::ThreadLease(unsigned wanted, const std::atomic<bool>* cancel, LeaseClass leaseClass)
+    : class_(leaseClass) {
+  previous_ = leasedHere;
+  if (previous_ > 0) {
+    // A lease inside one: a share of the threads this thread holds, none taken anew (waiting here
+    // for more would wait on itself).
+    nested_ = true;
+    threads_ = wanted == 0 ? previous_ : std::min(wanted, previous_);
+    leasedHere = threads_;
+    return;
+  }
+  Budget& b = budget();
+  std::deque<std::uint64_t>& line = b.waiting[int(class_)];
+  std::unique_lock lock(b.mutex);
+  const std::uint64_t ticket = b.nextTicket++;
+  line.push_back(ticket);
+  for (;;) {
+    if (cancel && cancel->load()) {
+      line.erase(std::find(line.begin(), line.end(), ticket));
+      lock.unlock();
+      b.freed.notify_all();  // the one behind may be first now
+      return;
+    }
+    // The capacity is read each time: the preference may change while a job waits.
+    const unsigned free = line.front() == ticket ? freeFor(b, class_, threadCount()) : 0;
+    if (free > 0) {
+      threads_ = wanted == 0 ? free : std::min(wanted, free);
+      break;
+    }
+    b.freed.wait_for(lock, std::chrono::milliseconds(5));
+  }
+  line.pop_front();
+  b.leased += threads_;
+  if (class_ == LeaseClass::Background) b.leasedBackground += threads_;
+  leasedHere = threads_;
+  lock.unlock();
+  b.freed.notify_all();  // the next in line may take what is left
+}
+
+ThreadLease::~ThreadLease() {
+  if (threads_ == 0) return;
+  if (nested_) {
+    leasedHere = previous_;
+    return;
+  }
+  Budget& b = budget();
+  {
+    const std::lock_guard lock(b.mutex);
+    b.leased -= threads_;
+    if (class_ == LeaseClass::Background) b.leasedBackground -= threads_;
+  }
+  leasedHere = previous_;
+  b.freed.notify_all();
+}
+
+unsigned ThreadLease::leased() {
+  Budget& b = budget();
+  const std::lock_guard lock(b.mutex);
+  return b.leased;
 }
 
 void runParallel(unsigned count, const std::function<void(unsigned)>& work,

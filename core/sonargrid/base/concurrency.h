@@ -12,6 +12,8 @@
 // that cannot be started, stops and joins the rest, and rethrows to the caller. Nothing on a
 // parallel path may end in std::terminate or wait forever for a thread that has failed.
 
+#include <atomic>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <stdexcept>
@@ -56,10 +58,46 @@ unsigned automaticThreadCount();
 // The policy: explicitThreadCount() if set, else automaticThreadCount().
 unsigned threadCount();
 
-// The threads a parallel path started here may use: threadCount(), or 1 inside the work of a
-// runParallel() (a sweep's sets already occupy every thread; a map's snapshot inside one must not
-// start as many again).
+// The threads a parallel path started here may use: threadCount(), the share of a ThreadLease
+// held by this thread, or 1 inside the work of a runParallel() (a sweep's sets already occupy every
+// thread; a map's snapshot inside one must not start as many again).
 unsigned parallelThreads();
+
+// The thread budget that jobs running side by side share (the app's re-map, metrics, cell
+// inspector, comparison and sweep, each on a worker of its own). A job takes a lease on its worker
+// thread before it starts work; while the lease lives, parallelThreads() there returns its share,
+// so the job's parallel paths start no more threads than it holds. The leases held at once never
+// add up to more than threadCount(): a job whose turn comes while the threads it may take are
+// leased waits for one to come back. Turns are first come, first served within a class, and a
+// waiting interactive lease goes before every background one. Background leases together keep one
+// thread for the interactive class when the policy grants two or more, so that the view's re-map
+// starts at once whatever else runs. A lease is taken whole, never grown: a job never waits while
+// holding one, so jobs cannot wait on each other. Results do not depend on the share (every
+// parallel path is bit-identical at any thread count).
+enum class LeaseClass { Interactive, Background };
+
+class ThreadLease {
+ public:
+  // Waits for its turn and a free thread, then takes up to `wanted` of the threads free to its
+  // class (0: all of them; at least 1). While waiting it looks at `cancel` every few milliseconds:
+  // when that turns true it stops waiting and the lease holds nothing (threads() == 0).
+  explicit ThreadLease(unsigned wanted = 0, const std::atomic<bool>* cancel = nullptr,
+                       LeaseClass leaseClass = LeaseClass::Background);
+  ~ThreadLease();  // gives the threads back and wakes the jobs waiting for them
+  ThreadLease(const ThreadLease&) = delete;
+  ThreadLease& operator=(const ThreadLease&) = delete;
+
+  unsigned threads() const { return threads_; }
+
+  // Threads leased now, over every lease of the process.
+  static unsigned leased();
+
+ private:
+  unsigned threads_ = 0;
+  unsigned previous_ = 0;  // this thread's share before, restored at the end
+  bool nested_ = false;    // inside another lease of this thread: nothing taken from the budget
+  LeaseClass class_;
+};
 
 // Sets an explicit count for its lifetime (a test, a batch step), then restores the one before.
 class ScopedThreadCount {

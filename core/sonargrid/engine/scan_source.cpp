@@ -63,16 +63,21 @@ ScanSource::ScanSource(std::string name, SonarRing ring)
   state_.chunks_ = std::make_shared<const std::vector<ScanPrefix::Chunk>>();
 }
 
-ScanSource::ScanSource(Dataset log) : ScanSource(std::move(log.name), std::move(log.ring)) {
-  if (!log.scans.empty()) {
-    state_.size_ = log.scans.size();
-    state_.ordered_ = readingsOrdered(log.scans, lastReadingTime_);
-    lastScanTime_ = log.scans.back().time;
-    auto scans = std::make_shared<const std::vector<Scan>>(std::move(log.scans));
+ScanSource::ScanSource(Dataset log) : ScanSource(std::make_shared<const Dataset>(std::move(log))) {}
+
+ScanSource::ScanSource(std::shared_ptr<const Dataset> log)
+    : ScanSource(log ? log->name : std::string(), log ? log->ring : SonarRing()) {
+  if (log && !log->scans.empty()) {
+    state_.size_ = log->scans.size();
+    state_.ordered_ = readingsOrdered(log->scans, lastReadingTime_);
+    lastScanTime_ = log->scans.back().time;
+    // The chunk shares the log's scans: it keeps the log alive.
+    std::shared_ptr<const std::vector<Scan>> scans(log, &log->scans);
     state_.chunks_ = std::make_shared<const std::vector<ScanPrefix::Chunk>>(
         std::vector<ScanPrefix::Chunk>{{0, std::move(scans)}});
   }
   state_.complete_ = true;
+  view_ = log ? std::move(log) : std::make_shared<const Dataset>(Dataset{name_, ring_, {}});
 }
 
 void ScanSource::append(std::vector<Scan> scans) {
@@ -125,6 +130,19 @@ std::size_t ScanSource::size() const {
 ScanPrefix ScanSource::prefix() const {
   std::lock_guard lock(mutex_);
   return state_;
+}
+
+std::shared_ptr<const Dataset> ScanSource::view() const {
+  const ScanPrefix p = prefix();
+  {
+    const std::lock_guard lock(mutex_);
+    if (view_ && view_->scans.size() == p.size()) return view_;
+  }
+  auto d = std::make_shared<const Dataset>(Dataset{name_, ring_, p.copy(0, p.size())});
+  const std::lock_guard lock(mutex_);
+  // Another thread may have made a longer one meanwhile: keep the longest.
+  if (!view_ || view_->scans.size() < d->scans.size()) view_ = d;
+  return d;
 }
 
 Dataset ScanSource::dataset(std::size_t count) const {

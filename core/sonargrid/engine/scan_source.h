@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #pragma once
-// Scans in time order as they arrive: a robot link appends them while a mapper and the views read
-// them; a loaded log is a source that is complete (as PlotJuggler's loaders and streamers feed one
-// data map). Dataset stays the value a log reader returns. (docs/models.md, "Batch, incremental and
-// live mapping".)
+// Scans in time order as they arrive: the one road for scans (docs/architecture.md). A robot link
+// appends them while a mapper and the views read them; a loaded log is a source that is complete
+// (openLog(), io/log_reader.h), as PlotJuggler's loaders and streamers feed one data map. A
+// Dataset is a source's complete view (view()): the scans so far with the name and ring, which
+// the batch paths (metrics, the cell inspector, sweeps, exports) read. (docs/models.md, "Batch,
+// incremental and live mapping".)
 //
 // One thread may append while others read. A reader takes a ScanPrefix, an immutable view of the
 // scans appended so far, and reads it without locks for as long as it likes: appended scans are
@@ -62,6 +64,8 @@ class ScanSource {
   ScanSource(std::string name, SonarRing ring);
   // A loaded log: its scans, complete.
   explicit ScanSource(Dataset log);
+  // The same, sharing the log (no copy): view() returns it.
+  explicit ScanSource(std::shared_ptr<const Dataset> log);
 
   // Set at construction, never changed: read from any thread.
   const std::string& name() const { return name_; }
@@ -78,6 +82,9 @@ class ScanSource {
   ScanPrefix prefix() const;
   // The first `count` scans (at most size()) with the name and ring: a log, e.g. for saving.
   Dataset dataset(std::size_t count) const;
+  // Every scan so far as a log, shared: for a loaded log the log itself; for a live source a copy
+  // of its scans, made again only when scans came since the last call.
+  std::shared_ptr<const Dataset> view() const;
 
  private:
   const std::string name_;
@@ -86,6 +93,7 @@ class ScanSource {
   ScanPrefix state_;  // everything so far, replaced (not changed) by each append
   double lastScanTime_;
   double lastReadingTime_;
+  mutable std::shared_ptr<const Dataset> view_;  // the last view(), of view_->scans.size() scans
 };
 
 }  // namespace sg

@@ -142,6 +142,12 @@ Dataset readLog(const std::string& path, const LogOptions& options, LoadReport* 
   return load(source, head, path, options, report);
 }
 
+std::shared_ptr<ScanSource> openLog(const std::string& path, const LogOptions& options,
+                                    LoadReport* report) {
+  return std::make_shared<ScanSource>(
+      std::make_shared<const Dataset>(readLog(path, options, report)));
+}
+
 Dataset parseLog(std::string_view bytes, const std::string& displayName, const LogOptions& options,
                  LoadReport* report) {
   text::MemorySource source(bytes);

@@ -2,12 +2,17 @@
 #pragma once
 // The one entry point for loading a sonar log of any supported format (docs/formats.md, "Choosing
 // a reader"): .sglog, CARMEN, Player writelog or generic CSV, chosen by LogOptions::format or, for
-// LogFormat::Auto, by the file's first bytes.
+// LogFormat::Auto, by the file's first bytes. openLog() gives the log as what every consumer reads
+// scans from, a ScanSource (scan_source.h): complete, as a live link's source is when its robot
+// has stopped.
 
 #include <string>
 #include <string_view>
 
+#include <memory>
+
 #include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/scan_source.h"
 #include "sonargrid/io/log_options.h"
 
 namespace sg {
@@ -17,6 +22,9 @@ namespace sg {
 // `report` (optional) receives the format used and what was skipped.
 Dataset readLog(const std::string& path, const LogOptions& options = {},
                 LoadReport* report = nullptr);
+// The log read by readLog(), as a complete source that shares it.
+std::shared_ptr<ScanSource> openLog(const std::string& path, const LogOptions& options = {},
+                                    LoadReport* report = nullptr);
 Dataset parseLog(std::string_view bytes, const std::string& displayName,
                  const LogOptions& options = {}, LoadReport* report = nullptr);
 
