@@ -24,7 +24,6 @@ QString number(double v, int decimals) {
 }  // namespace
 
 CellInspector::CellInspector(QWidget* parent) : QWidget(parent) {
-  pool_.setMaxThreadCount(1);
   header_ = new QLabel(this);
   header_->setObjectName(QStringLiteral("cellInspectorHeader"));
   header_->setWordWrap(true);
@@ -86,10 +85,7 @@ CellInspector::CellInspector(QWidget* parent) : QWidget(parent) {
   updateHeader();
 }
 
-CellInspector::~CellInspector() {
-  if (cancel_) cancel_->store(true);
-  pool_.waitForDone();
-}
+CellInspector::~CellInspector() = default;
 
 void CellInspector::setContext(std::shared_ptr<const Dataset> log, const GridSpec& grid,
                                const MapperSettings& settings) {
@@ -118,8 +114,7 @@ void CellInspector::setContext(std::shared_ptr<const Dataset> log, const GridSpe
 
 void CellInspector::clearContext(const QString& why) {
   if (!data_ && !grid_ && !cell_ && status_ == why) return;  // a live map's every append
-  if (cancel_) cancel_->store(true);
-  ++generation_;
+  jobs_.renew();
   data_.reset();
   grid_.reset();
   trace_.reset();
@@ -154,33 +149,25 @@ bool CellInspector::inspect(const CellIndex& cell) {
 }
 
 void CellInspector::start() {
-  if (cancel_) cancel_->store(true);
-  cancel_ = std::make_shared<std::atomic<bool>>(false);
-  const quint64 generation = ++generation_;
-  ++running_;
+  jobs_.renew();
   status_ = tr("Tracing…");
-  // The job holds its own copies; `this` outlives it (the destructor waits for the pool).
-  pool_.start([this, generation, data = data_, grid = *grid_, settings = settings_, cell = *cell_,
-               cancel = cancel_] {
-    std::shared_ptr<const CellTrace> trace;
-    QString error;
-    try {
-      auto t = std::make_shared<CellTrace>(traceCell(
-          *data, grid, settings, cell, std::numeric_limits<double>::infinity(), cancel.get()));
-      if (t->complete) trace = std::move(t);
-    } catch (const std::exception& e) {
-      error = QString::fromStdString(e.what());
-    }
-    QMetaObject::invokeMethod(
-        this, [this, generation, trace, error] { deliver(generation, trace, error); },
-        Qt::QueuedConnection);
-  });
+  // The job holds its own copies.
+  jobs_.run<std::shared_ptr<const CellTrace>>(
+      [data = data_, grid = *grid_, settings = settings_,
+       cell = *cell_](const std::atomic<bool>* cancel) -> std::shared_ptr<const CellTrace> {
+        auto t = std::make_shared<CellTrace>(traceCell(
+            *data, grid, settings, cell, std::numeric_limits<double>::infinity(), cancel));
+        if (!t->complete) return nullptr;
+        return t;
+      },
+      [this](JobOutcome<std::shared_ptr<const CellTrace>> outcome) {
+        deliver(outcome.generation, outcome.value ? *outcome.value : nullptr, outcome.error);
+      });
 }
 
 void CellInspector::deliver(quint64 generation, std::shared_ptr<const CellTrace> trace,
                             const QString& error) {
-  --running_;
-  if (generation != generation_) return;  // a newer cell or context took its place
+  if (generation != jobs_.generation()) return;  // a newer cell or context took its place
   if (!error.isEmpty()) {
     status_ = error;
     updateHeader();

@@ -7,13 +7,13 @@
 // other settings cancels a stale one. Selecting a reading emits readingChosen (the window shows it
 // in the beam-model view).
 
-#include <QThreadPool>
 #include <QWidget>
 #include <atomic>
 #include <memory>
 #include <optional>
 
 #include "cell_trace_plot.h"
+#include "job_queue.h"
 #include "sonargrid/data/dataset.h"
 #include "sonargrid/engine/cell_trace.h"
 #include "sonargrid/engine/mapper.h"
@@ -47,7 +47,7 @@ class CellInspector : public QWidget {
 
   // The last complete trace of the inspected cell (null while none has arrived).
   const std::shared_ptr<const CellTrace>& trace() const { return trace_; }
-  bool busy() const { return running_ > 0; }
+  bool busy() const { return jobs_.busy(); }
   // The timeline's time: a line on the plot.
   void setCurrentTime(double t);
   // Selects reading `step` of the trace in the list and the plot, and emits readingChosen.
@@ -76,15 +76,14 @@ class CellInspector : public QWidget {
   std::optional<CellIndex> cell_;
   std::shared_ptr<const CellTrace> trace_;
   QString status_;
-  quint64 generation_ = 0;
-  int running_ = 0;
-  std::shared_ptr<std::atomic<bool>> cancel_;
 
   QLabel* header_;
   QComboBox* quantity_;
   CellTracePlot* plot_;
   QTreeWidget* list_;
-  QThreadPool pool_;  // one thread: a new trace waits for the cancelled one to stop
+  // One job at a time: a new trace waits for the cancelled one to stop. Last: destroyed (cancelled
+  // and waited for) first.
+  JobQueue jobs_;
 };
 
 }  // namespace sg::ui

@@ -66,7 +66,6 @@ ComparisonTable::ComparisonTable(QWidget* parent)
       removeButton_(new QPushButton(tr("Unpin"), this)),
       table_(new QTableWidget(this)) {
   setObjectName(QStringLiteral("comparisonTable"));
-  pool_.setMaxThreadCount(1);
   auto* pin = new QPushButton(tr("Pin Current"), this);
   pin->setObjectName(QStringLiteral("pinCurrent"));
   pin->setToolTip(tr("Add the current model, rule, parameters, pose and cell size as a row"));
@@ -116,10 +115,7 @@ ComparisonTable::ComparisonTable(QWidget* parent)
   fill();
 }
 
-ComparisonTable::~ComparisonTable() {
-  if (cancelRunning_) cancelRunning_->store(true);
-  pool_.waitForDone();
-}
+ComparisonTable::~ComparisonTable() = default;
 
 void ComparisonTable::setRows(std::vector<ComparisonRow> rows) {
   rows_ = std::move(rows);
@@ -164,87 +160,75 @@ void ComparisonTable::schedule() {
 
 void ComparisonTable::start() {
   pending_ = false;
-  const quint64 generation = ++generation_;
-  if (cancelRunning_) cancelRunning_->store(true);
+  jobs_.renew();
   if (rows_.empty() || !run_) {
     fill();
     emit updated();
     return;
   }
-  auto cancel = std::make_shared<std::atomic<bool>>(false);
-  cancelRunning_ = cancel;
-  ++running_;
   fill();
-  pool_.start([this, generation, cancel, rows = rows_, run = run_, second = secondRun_,
-               reference = reference_, known = maps_] {
-    std::optional<Outcome> outcome;
-    QString error;
-    try {
-      Outcome o;
-      auto maps = std::make_shared<std::map<std::string, std::shared_ptr<const OccupancyMap>>>();
-      std::vector<const OccupancyMap*> built;
-      for (const ComparisonRow& row : rows) {
-        const std::string key = configurationKey(row);
-        std::shared_ptr<const OccupancyMap> map;
-        if (known && known->count(key)) map = known->at(key);
-        if (!map) {
-          Mapper mapper(run->ring, run->fittingGrid(row.settings.pose, row.cellSize), row.settings);
-          if (!mapper.mapDataset(*run, std::numeric_limits<double>::infinity(), cancel.get()))
-            throw std::runtime_error("cancelled");
-          map = std::make_shared<const OccupancyMap>(mapper.snapshot());
-        }
-        (*maps)[key] = map;
-        built.push_back(map.get());
-      }
-      for (std::size_t i = 0; i < rows.size(); ++i) {
-        MetricsInput in;
-        in.map = (*maps)[configurationKey(rows[i])];
-        in.reference = reference;
-        in.run = run;
-        in.secondRun = second;
-        in.settings = rows[i].settings;
-        in.cellSize = rows[i].cellSize;
-        in.goodness = !reference;
-        in.dminOverlay = false;
-        RowResult r;
-        const std::optional<MetricsResult> each = computeMetrics(in, cancel.get());
-        if (!each) throw std::runtime_error("cancelled");
-        r.each = *each;
-        if (reference) {
-          in.goodness = false;
-          in.secondRun = nullptr;  // the two runs are compared once, in the view of each map
-          in.score.cellMask = commonObservedCells(built, i);
-          const std::optional<MetricsResult> common = computeMetrics(in, cancel.get());
-          if (!common) throw std::runtime_error("cancelled");
-          r.common = *common;
-        } else {
-          r.common = r.each;  // goodness has no cell set: the same numbers in both views
-        }
-        o.rows.push_back(std::move(r));
-      }
-      o.maps = std::move(maps);
-      outcome = std::move(o);
-    } catch (const std::exception& e) {
-      error = QString::fromUtf8(e.what());
-    }
-    QMetaObject::invokeMethod(
-        this,
-        [this, generation, outcome = std::move(outcome), error] {
-          --running_;
-          if (generation != generation_) return;  // superseded
-          if (outcome) {
-            maps_ = outcome->maps;
-            for (std::size_t i = 0; i < outcome->rows.size() && i < results_.size(); ++i)
-              results_[i] = outcome->rows[i];
-            status_->clear();
-          } else {
-            status_->setText(tr("Not computed: %1").arg(error));
+  jobs_.run<Outcome>(
+      [rows = rows_, run = run_, second = secondRun_, reference = reference_,
+       known = maps_](const std::atomic<bool>* cancel) {
+        Outcome o;
+        auto maps = std::make_shared<std::map<std::string, std::shared_ptr<const OccupancyMap>>>();
+        std::vector<const OccupancyMap*> built;
+        for (const ComparisonRow& row : rows) {
+          const std::string key = configurationKey(row);
+          std::shared_ptr<const OccupancyMap> map;
+          if (known && known->count(key)) map = known->at(key);
+          if (!map) {
+            Mapper mapper(run->ring, run->fittingGrid(row.settings.pose, row.cellSize),
+                          row.settings);
+            if (!mapper.mapDataset(*run, std::numeric_limits<double>::infinity(), cancel))
+              throw std::runtime_error("cancelled");
+            map = std::make_shared<const OccupancyMap>(mapper.snapshot());
           }
-          fill();
-          emit updated();
-        },
-        Qt::QueuedConnection);
-  });
+          (*maps)[key] = map;
+          built.push_back(map.get());
+        }
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+          MetricsInput in;
+          in.map = (*maps)[configurationKey(rows[i])];
+          in.reference = reference;
+          in.run = run;
+          in.secondRun = second;
+          in.settings = rows[i].settings;
+          in.cellSize = rows[i].cellSize;
+          in.goodness = !reference;
+          in.dminOverlay = false;
+          RowResult r;
+          const std::optional<MetricsResult> each = computeMetrics(in, cancel);
+          if (!each) throw std::runtime_error("cancelled");
+          r.each = *each;
+          if (reference) {
+            in.goodness = false;
+            in.secondRun = nullptr;  // the two runs are compared once, in the view of each map
+            in.score.cellMask = commonObservedCells(built, i);
+            const std::optional<MetricsResult> common = computeMetrics(in, cancel);
+            if (!common) throw std::runtime_error("cancelled");
+            r.common = *common;
+          } else {
+            r.common = r.each;  // goodness has no cell set: the same numbers in both views
+          }
+          o.rows.push_back(std::move(r));
+        }
+        o.maps = std::move(maps);
+        return o;
+      },
+      [this](JobOutcome<Outcome> outcome) {
+        if (!outcome.current) return;  // superseded
+        if (outcome.value) {
+          maps_ = outcome.value->maps;
+          for (std::size_t i = 0; i < outcome.value->rows.size() && i < results_.size(); ++i)
+            results_[i] = outcome.value->rows[i];
+          status_->clear();
+        } else {
+          status_->setText(tr("Not computed: %1").arg(outcome.error));
+        }
+        fill();
+        emit updated();
+      });
 }
 
 bool ComparisonTable::waitForResult(int timeoutMs) {

@@ -12,7 +12,6 @@
 // and the destructor waits for the running one. Clicking a row asks for its configuration back
 // (rowActivated); the window makes that an undoable edit.
 
-#include <QThreadPool>
 #include <QWidget>
 #include <atomic>
 #include <map>
@@ -20,6 +19,7 @@
 #include <optional>
 #include <vector>
 
+#include "job_queue.h"
 #include "metrics_compute.h"
 
 class QComboBox;
@@ -55,7 +55,7 @@ class ComparisonTable : public QWidget {
   // The numbers of row `row` in the chosen cell set (null until computed).
   const MetricsResult* result(std::size_t row) const;
   const MetricsResult* result(std::size_t row, CellSet set) const;
-  bool busy() const { return pending_ || running_ > 0; }
+  bool busy() const { return pending_ || jobs_.busy(); }
   bool waitForResult(int timeoutMs);
 
   // The table as CSV (one row per pinned configuration; the JSON keys of score --json as columns,
@@ -93,11 +93,8 @@ class ComparisonTable : public QWidget {
   std::vector<std::optional<RowResult>> results_;
   // Maps of pinned configurations, by configuration (kept across recomputations).
   std::shared_ptr<const std::map<std::string, std::shared_ptr<const OccupancyMap>>> maps_;
-  quint64 generation_ = 0;
   bool pending_ = false;
-  int running_ = 0;
-  std::shared_ptr<std::atomic<bool>> cancelRunning_;
-  QThreadPool pool_;
+  JobQueue jobs_;  // last: destroyed (cancelled and waited for) first
 };
 
 }  // namespace sg::ui

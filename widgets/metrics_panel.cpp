@@ -22,7 +22,6 @@ MetricsPanel::MetricsPanel(QWidget* parent)
     : QWidget(parent), status_(new QLabel(this)), table_(new QTableWidget(this)) {
   setObjectName(QStringLiteral("metricsPanel"));
   // One computation at a time: a stale one is cancelled, not raced by its successor.
-  pool_.setMaxThreadCount(1);
   settle_.setSingleShot(true);
   settle_.setInterval(kSettleMs);
   connect(&settle_, &QTimer::timeout, this, &MetricsPanel::start);
@@ -45,10 +44,7 @@ MetricsPanel::MetricsPanel(QWidget* parent)
   fill();
 }
 
-MetricsPanel::~MetricsPanel() {
-  if (cancelRunning_) cancelRunning_->store(true);
-  pool_.waitForDone();
-}
+MetricsPanel::~MetricsPanel() = default;
 
 void MetricsPanel::setMap(std::shared_ptr<const OccupancyMap> map) {
   input_.map = std::move(map);
@@ -66,7 +62,7 @@ void MetricsPanel::awaitMap() {
     settle_.stop();
     pending_ = false;
   }
-  if (cancelRunning_) cancelRunning_->store(true);
+  jobs_.cancel();
   status_->setText(tr("Waiting for the new map…"));
 }
 
@@ -106,10 +102,7 @@ void MetricsPanel::start() {
   if (settle_.isActive()) return;  // its timeout starts the computation, with the newest inputs
   pending_ = false;
   if (awaitingMap_) return;  // setMap() or resume() schedules again
-  const quint64 generation = ++generation_;
-  if (cancelRunning_) cancelRunning_->store(true);
-  auto cancel = std::make_shared<std::atomic<bool>>(false);
-  cancelRunning_ = cancel;
+  const quint64 generation = jobs_.renew();
   MetricsInput input = input_;
   // Paper 002's goodness is for maps without a reference; the two-run comparison whenever a second
   // run is loaded.
@@ -125,34 +118,32 @@ void MetricsPanel::start() {
     input.goodness = false;
     input.secondRun = nullptr;
   }
-  ++running_;
   status_->setText(tr("Computing…"));
-  pool_.start([this, generation, cancel, key, known, input = std::move(input)] {
-    std::optional<MetricsResult> result;
-    try {
-      result = computeMetrics(input, cancel.get());
-      if (result && known) result->goodness = known;
-    } catch (const std::exception& e) {
-      result = MetricsResult{};
-      result->scoreError = QString::fromUtf8(e.what());
-    }
-    QMetaObject::invokeMethod(
-        this,
-        [this, generation, key, result = std::move(result)] {
-          --running_;
-          if (result && result->goodness) {
-            goodnessKey_ = key;
-            goodness_ = result->goodness;
-          }
-          show(generation, result);
-        },
-        Qt::QueuedConnection);
-  });
+  jobs_.run<std::optional<MetricsResult>>(
+      [known, input = std::move(input)](const std::atomic<bool>* cancel) {
+        std::optional<MetricsResult> result = computeMetrics(input, cancel);
+        if (result && known) result->goodness = known;
+        return result;
+      },
+      [this, key](JobOutcome<std::optional<MetricsResult>> outcome) {
+        std::optional<MetricsResult> result;
+        if (outcome.value) {
+          result = std::move(*outcome.value);
+        } else if (!outcome.skipped) {
+          result = MetricsResult{};
+          result->scoreError = outcome.error;
+        }
+        if (result && result->goodness) {
+          goodnessKey_ = key;
+          goodness_ = result->goodness;
+        }
+        show(outcome.generation, result);
+      });
 }
 
 void MetricsPanel::show(quint64 generation, const std::optional<MetricsResult>& result) {
   // A superseded computation (cancelled or finished late) is never shown.
-  if (generation != generation_ || !result) return;
+  if (generation != jobs_.generation() || !result) return;
   result_ = result;
   shownGeneration_ = generation;
   fill();
@@ -163,9 +154,9 @@ void MetricsPanel::show(quint64 generation, const std::optional<MetricsResult>& 
 bool MetricsPanel::waitForResult(int timeoutMs) {
   QElapsedTimer clock;
   clock.start();
-  while ((busy() || shownGeneration_ != generation_) && clock.elapsed() < timeoutMs)
+  while ((busy() || shownGeneration_ != jobs_.generation()) && clock.elapsed() < timeoutMs)
     QCoreApplication::processEvents(QEventLoop::AllEvents, 20);
-  return !busy() && shownGeneration_ == generation_;
+  return !busy() && shownGeneration_ == jobs_.generation();
 }
 
 void MetricsPanel::fill() {

@@ -6,17 +6,17 @@
 // its name, its unit and, in a tooltip, what it is and which paper defines it.
 //
 // The numbers come from computeMetrics() (metrics_compute.h: the core calls the CLI makes) on a
-// private one-thread pool, off the GUI thread. A new map, reference or run cancels the stale
+// JobQueue (job_queue.h), off the GUI thread. A new map, reference or run cancels the stale
 // computation, which stops at its next check and is never shown; the destructor cancels the running
 // one and waits for it, so the window may close mid-computation.
 
-#include <QThreadPool>
 #include <QTimer>
 #include <QWidget>
 #include <atomic>
 #include <memory>
 #include <optional>
 
+#include "job_queue.h"
 #include "metrics_compute.h"
 
 class QLabel;
@@ -53,11 +53,11 @@ class MetricsPanel : public QWidget {
   // The numbers shown (null before the first result).
   const MetricsResult* result() const { return result_ ? &*result_ : nullptr; }
   // True while a computation is scheduled or running, or a new map is awaited.
-  bool busy() const { return pending_ || running_ > 0 || awaitingMap_; }
+  bool busy() const { return pending_ || jobs_.busy() || awaitingMap_; }
   // Blocks (running the event loop) until the newest inputs' numbers are shown; false on timeout.
   bool waitForResult(int timeoutMs);
   // Requests made / results shown (a result is shown for the newest request only).
-  quint64 generation() const { return generation_; }
+  quint64 generation() const { return jobs_.generation(); }
   quint64 shownGeneration() const { return shownGeneration_; }
 
  signals:
@@ -86,14 +86,11 @@ class MetricsPanel : public QWidget {
   };
   std::optional<GoodnessKey> goodnessKey_;
   std::optional<SetEvaluation> goodness_;
-  quint64 generation_ = 0;
   quint64 shownGeneration_ = 0;
   bool pending_ = false;
   bool awaitingMap_ = false;
-  int running_ = 0;
-  std::shared_ptr<std::atomic<bool>> cancelRunning_;
   QTimer settle_;  // awaitMap()'s map waits for it
-  QThreadPool pool_;
+  JobQueue jobs_;  // last: destroyed (cancelled and waited for) first
 };
 
 }  // namespace sg::ui

@@ -29,8 +29,8 @@ struct RemapController::WarmMapper {
 
 // What one run maps, as it was when it was asked for.
 struct RemapController::Request {
-  std::shared_ptr<const Dataset> data;
   std::shared_ptr<const ScanSource> source;
+  bool live = false;  // on a growing grid
   MapperSettings settings;
   double cellSize = 0.05;
   double until = 0.0;
@@ -92,26 +92,30 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 RemapController::RemapController(QObject* parent)
     : QObject(parent), warm_(std::make_shared<WarmMapper>()) {
-  pool_.setMaxThreadCount(1);
+  connect(&jobs_, &JobQueue::busyChanged, this, &RemapController::busyChanged);
 }
 
 RemapController::~RemapController() {
   if (cancelRunning_) cancelRunning_->store(true);
-  pool_.waitForDone();
+  jobs_.waitForDone();
 }
 
-void RemapController::setDataset(std::shared_ptr<const Dataset> data, double cellSize) {
-  data_ = std::move(data);
-  source_.reset();
+void RemapController::adopt(std::shared_ptr<const ScanSource> source, bool live, double cellSize) {
+  source_ = std::move(source);
+  live_ = live;
   cellSize_ = cellSize;
+}
+
+void RemapController::setSource(std::shared_ptr<const ScanSource> source, double cellSize) {
+  const bool live = source && !source->complete();
+  adopt(std::move(source), live, cellSize);
   remap();
 }
 
-void RemapController::start(std::shared_ptr<const Dataset> data, double cellSize,
+void RemapController::start(std::shared_ptr<const ScanSource> source, double cellSize,
                             const MapperSettings& settings, double until) {
-  data_ = std::move(data);
-  source_.reset();
-  cellSize_ = cellSize;
+  const bool live = source && !source->complete();
+  adopt(std::move(source), live, cellSize);
   settings_ = settings;
   haveSettings_ = true;
   until_ = until;
@@ -120,13 +124,21 @@ void RemapController::start(std::shared_ptr<const Dataset> data, double cellSize
 
 void RemapController::startLive(std::shared_ptr<const ScanSource> source, double cellSize,
                                 const MapperSettings& settings, double until) {
-  source_ = std::move(source);
-  data_.reset();
-  cellSize_ = cellSize;
+  adopt(std::move(source), true, cellSize);
   settings_ = settings;
   haveSettings_ = true;
   until_ = until;
   remap();
+}
+
+void RemapController::setDataset(std::shared_ptr<const Dataset> data, double cellSize) {
+  setSource(data ? std::make_shared<const ScanSource>(std::move(data)) : nullptr, cellSize);
+}
+
+void RemapController::start(std::shared_ptr<const Dataset> data, double cellSize,
+                            const MapperSettings& settings, double until) {
+  start(data ? std::make_shared<const ScanSource>(std::move(data)) : nullptr, cellSize, settings,
+        until);
 }
 
 void RemapController::setSettings(const MapperSettings& settings) {
@@ -142,28 +154,28 @@ void RemapController::setPreview(int factor, double aboveMs) {
 
 void RemapController::startPreview(quint64 generation,
                                    const std::shared_ptr<std::atomic<bool>>& cancel) {
-  pool_.start([this, data = data_, settings = settings_, cellSize = cellSize_ * previewFactor_,
-               until = until_, cancel, generation] {
+  struct Preview {
     std::shared_ptr<const OccupancyMap> map;
     double ms = 0.0;
-    try {
-      const auto t0 = std::chrono::steady_clock::now();
-      const auto mapper = mapperFor(*data, settings, cellSize);
-      if (mapper->mapDataset(*data, until, cancel.get())) {
-        map = std::make_shared<const OccupancyMap>(mapper->snapshot());
-        ms = msSince(t0);
-      }
-    } catch (const std::exception&) {
-      // The full run reports the error.
-    }
-    if (!map) return;
-    QMetaObject::invokeMethod(
-        this,
-        [this, generation, map = std::move(map), ms] {
-          if (generation == generation_) emit previewed(map, ms, generation);
-        },
-        Qt::QueuedConnection);
-  });
+  };
+  jobs_.run<Preview>(
+      cancel,
+      [data = source_->view(), settings = settings_, cellSize = cellSize_ * previewFactor_,
+       until = until_](const std::atomic<bool>* stop) {
+        Preview p;
+        const auto t0 = std::chrono::steady_clock::now();
+        const auto mapper = mapperFor(*data, settings, cellSize);
+        if (mapper->mapDataset(*data, until, stop)) {
+          p.map = std::make_shared<const OccupancyMap>(mapper->snapshot());
+          p.ms = msSince(t0);
+        }
+        return p;
+      },
+      [this, generation](JobOutcome<Preview> outcome) {
+        // An error is the full run's to report.
+        if (outcome.value && outcome.value->map && generation == generation_)
+          emit previewed(outcome.value->map, outcome.value->ms, generation);
+      });
 }
 
 void RemapController::setUntil(double until) {
@@ -176,65 +188,72 @@ void RemapController::remap() {
 }
 
 void RemapController::run(bool preview) {
-  if ((!data_ && !source_) || !haveSettings_) return;
+  if (!source_ || !haveSettings_) return;
   if (cancelRunning_) cancelRunning_->store(true);
   auto cancel = std::make_shared<std::atomic<bool>>(false);
   cancelRunning_ = cancel;
   const quint64 generation = ++generation_;
   lastRemapGeneration_ = generation;
   // Previews are of loaded logs: a live map is continued, which is already quick.
-  if (preview && data_) startPreview(generation, cancel);  // queued first, so it runs first
-  enqueue(Request{data_, source_, settings_, cellSize_, until_, cancel, generation, false});
+  if (preview && !live_) startPreview(generation, cancel);  // queued first, so it runs first
+  enqueue(Request{source_, live_, settings_, cellSize_, until_, cancel, generation, false});
   emit started(generation);
 }
 
 void RemapController::scansAppended() {
-  if (!source_ || !haveSettings_) return;
+  if (!source_ || !live_ || !haveSettings_) return;
   // A queued append run takes the source's scans when it starts: these are among them.
   if (appendWaiting_.exchange(true)) return;
   // The running run's cancel flag: a re-map asked for later stops this run too.
   if (!cancelRunning_) cancelRunning_ = std::make_shared<std::atomic<bool>>(false);
   enqueue(
-      Request{nullptr, source_, settings_, cellSize_, until_, cancelRunning_, ++generation_, true});
+      Request{source_, true, settings_, cellSize_, until_, cancelRunning_, ++generation_, true});
 }
 
 void RemapController::enqueue(Request request) {
-  if (running_++ == 0) emit busyChanged(true);
-  pool_.start([this, request = std::move(request), warm = warm_] {
-    if (request.append) appendWaiting_.store(false);
-    Outcome outcome;
-    if (request.cancel->load()) {
-      outcome.interrupted = true;  // superseded before it started: the warm mapper is unchanged
-    } else {
-      try {
-        outcome = request.source ? mapLive(*warm, request) : mapLoaded(*warm, request);
-      } catch (const std::exception& e) {
-        warm->mapper.reset();
-        outcome = Outcome{};
-        outcome.error = QString::fromStdString(e.what());
-      }
-    }
-    QMetaObject::invokeMethod(
-        this,
-        [this, generation = request.generation, outcome = std::move(outcome)] {
-          finish(generation, outcome);
-        },
-        Qt::QueuedConnection);
-  });
+  auto cancel = request.cancel;
+  const quint64 generation = request.generation;
+  const bool append = request.append;
+  jobs_.run<Outcome>(
+      std::move(cancel),
+      [this, append] {
+        // Its turn came: appends from now on need a run of their own (this one may be skipped).
+        if (append) appendWaiting_.store(false);
+      },
+      [this, request = std::move(request), warm = warm_](const std::atomic<bool>*) {
+        try {
+          return request.live ? mapLive(*warm, request) : mapLoaded(*warm, request);
+        } catch (...) {
+          warm->mapper.reset();
+          throw;
+        }
+      },
+      [this, generation](JobOutcome<Outcome> outcome) {
+        if (outcome.value) {
+          finish(generation, *outcome.value);
+        } else {
+          Outcome o;
+          // Superseded before it started: the warm mapper is unchanged.
+          o.interrupted = outcome.skipped;
+          o.error = outcome.error;
+          finish(generation, o);
+        }
+      });
 }
 
 RemapController::Outcome RemapController::mapLoaded(WarmMapper& warm, const Request& request) {
-  const Dataset& data = *request.data;
+  const std::shared_ptr<const Dataset> log = request.source->view();
+  const Dataset& data = *log;
   const MapperSettings& settings = request.settings;
   const double until = request.until;
   if (settings.pose == PoseSource::Truth && !data.hasTruth())
     throw MapperError("the log has no true pose for every scan; map with odometry");
   Outcome out;
   const auto t0 = std::chrono::steady_clock::now();
-  if (warm.data != request.data) {
+  if (warm.data != log) {
     warm.mapper.reset();
     warm.source.reset();
-    warm.data = request.data;
+    warm.data = log;
     warm.ordered = readingsInTimeOrder(data);
   }
   out.incremental = warm.mapper && warm.ordered && warm.cellSize == request.cellSize &&
@@ -334,7 +353,6 @@ RemapController::Outcome RemapController::mapLive(WarmMapper& warm, const Reques
 }
 
 void RemapController::finish(quint64 generation, const Outcome& outcome) {
-  if (--running_ == 0) emit busyChanged(false);
   // Superseded by a newer re-map (appends supersede nothing: each continues the one before).
   const bool stale = generation < lastRemapGeneration_;
   if (!outcome.error.isEmpty() && !stale) {
@@ -343,6 +361,7 @@ void RemapController::finish(quint64 generation, const Outcome& outcome) {
     emit cancelled(generation, outcome.interrupted);
   } else {
     if (!outcome.incremental) lastFullMs_ = outcome.ms;
+    lastMap_ = outcome.map;
     emit mapped(outcome.map, outcome.ms, generation, outcome.incremental);
   }
 }

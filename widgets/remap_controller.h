@@ -3,8 +3,8 @@
 // Re-maps a dataset off the GUI thread (DESIGN.md, "Threading"). Each request gets a generation
 // number; a newer request raises the cancel flag of the running one, which stops within a few
 // hundred readings (Mapper::mapDataset) and is reported cancelled. Only the newest run's map is
-// delivered, as an immutable snapshot. Runs go one at a time through a private one-thread pool, so
-// a cancelled run never competes with its successor for the cores Mapper already uses.
+// delivered, as an immutable snapshot. Runs go one at a time through a JobQueue (job_queue.h), so a
+// cancelled run never competes with its successor for the cores Mapper already uses.
 //
 // Moving the time forward with unchanged settings continues the last map with the readings in
 // between instead of starting over (the timeline playing). For a log whose readings are in time
@@ -25,11 +25,11 @@
 
 #include <QObject>
 #include <QString>
-#include <QThreadPool>
 #include <atomic>
 #include <limits>
 #include <memory>
 
+#include "job_queue.h"
 #include "sonargrid/data/dataset.h"
 #include "sonargrid/engine/mapper.h"
 #include "sonargrid/engine/occupancy_map.h"
@@ -44,24 +44,37 @@ class RemapController : public QObject {
   explicit RemapController(QObject* parent = nullptr);
   ~RemapController() override;  // cancels the running job and waits for it
 
-  // The log to map (shared, never modified) and the cell size of its fitting grid. Re-maps when
-  // settings were given before.
-  void setDataset(std::shared_ptr<const Dataset> data, double cellSize = 0.05);
-  // Everything at once, one run: a newly opened log.
-  void start(std::shared_ptr<const Dataset> data, double cellSize, const MapperSettings& settings,
-             double until);
-  // A live log: scans appended to `source` after this are mapped by scansAppended(). Maps what the
-  // source holds now, up to `until` (+infinity: every scan, following the live edge).
+  // Every log reaches the controller as a ScanSource (scan_source.h), the one road for scans. A
+  // source complete when it is given (a loaded log, openLog()) is mapped on its fitting grid, as
+  // the CLI maps it; one still filling (a robot link's) on a grid that grows with it. Each of
+  // these starts a run at once: everything for a newly opened log.
+  void start(std::shared_ptr<const ScanSource> source, double cellSize,
+             const MapperSettings& settings, double until);
+  // A new source, or a new cell size, with the settings given before (none: no run).
+  void setSource(std::shared_ptr<const ScanSource> source, double cellSize = 0.05);
+  // The live road for any source, complete or not: scans appended to `source` after this are
+  // mapped by scansAppended(). Maps what the source holds now, up to `until` (+infinity: every
+  // scan, following the live edge), on a grid that starts at the first pose and grows.
   void startLive(std::shared_ptr<const ScanSource> source, double cellSize,
                  const MapperSettings& settings,
                  double until = std::numeric_limits<double>::infinity());
-  std::shared_ptr<const Dataset> dataset() const { return data_; }      // null for a live log
-  std::shared_ptr<const ScanSource> source() const { return source_; }  // null for a loaded log
+  // A log in memory: its complete source (start(), setSource()).
+  void setDataset(std::shared_ptr<const Dataset> data, double cellSize = 0.05);
+  void start(std::shared_ptr<const Dataset> data, double cellSize, const MapperSettings& settings,
+             double until);
+  // The source's log on its fitting grid; null for a live one.
+  std::shared_ptr<const Dataset> dataset() const {
+    return source_ && !live_ ? source_->view() : nullptr;
+  }
+  std::shared_ptr<const ScanSource> source() const { return source_; }
+  bool live() const { return live_; }
   double cellSize() const { return cellSize_; }
   const MapperSettings& settings() const { return settings_; }
   double until() const { return until_; }
-  bool busy() const { return running_ > 0; }
+  bool busy() const { return jobs_.busy(); }
   quint64 latestGeneration() const { return generation_; }
+  // The map of the last mapped() (never a preview), or null.
+  const std::shared_ptr<const OccupancyMap>& lastMap() const { return lastMap_; }
   // Preview a settings change on cells `factor` times as large when the last full re-map of the
   // log took more than `aboveMs`; factor 1 (the default) turns previews off.
   void setPreview(int factor, double aboveMs);
@@ -103,9 +116,10 @@ class RemapController : public QObject {
   void run(bool preview);
   void enqueue(Request request);
   void startPreview(quint64 generation, const std::shared_ptr<std::atomic<bool>>& cancel);
+  void adopt(std::shared_ptr<const ScanSource> source, bool live, double cellSize);
 
-  std::shared_ptr<const Dataset> data_;
   std::shared_ptr<const ScanSource> source_;
+  bool live_ = false;  // mapped on a growing grid (startLive(), or a source not yet complete)
   double cellSize_ = 0.05;
   MapperSettings settings_;
   bool haveSettings_ = false;
@@ -114,13 +128,14 @@ class RemapController : public QObject {
   quint64 lastRemapGeneration_ = 0;         // the newest request that was not an append
   std::atomic<bool> appendWaiting_{false};  // an append run is queued and has not started
   std::shared_ptr<std::atomic<bool>> cancelRunning_;
-  int running_ = 0;
   int previewFactor_ = 1;
   double previewAboveMs_ = 0.0;
   double lastFullMs_ = 0.0;  // the last full re-map from scratch (not a continuation)
+  std::shared_ptr<const OccupancyMap> lastMap_;
   // Touched only by jobs, and jobs run one at a time.
   std::shared_ptr<WarmMapper> warm_;
-  QThreadPool pool_;
+  // The view's re-map goes before every other job. Last: destroyed (waited for) first.
+  JobQueue jobs_{JobQueue::Share::Interactive};
 };
 
 }  // namespace sg::ui

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// The sweep view's worker: runs one sweep (the core's evaluateSets(), set_evaluation.h) on a
-// thread of its own, which evaluateSets() joins with the thread policy's others (concurrency.h),
+// The sweep view's worker: runs one sweep (the core's evaluateSets(), set_evaluation.h) as a job of
+// a JobQueue (job_queue.h), on every thread of the policy but one (the view's re-maps keep one),
 // and hands each finished set back on the GUI thread. Cancel stops it between scans; destroying
 // the runner cancels and waits for the threads, so closing a window mid-sweep neither crashes nor
 // hangs.
@@ -12,9 +12,9 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "job_queue.h"
 #include "sonargrid/data/dataset.h"
 #include "sonargrid/params/parameters.h"
 #include "sonargrid/reference/reference_map.h"
@@ -39,13 +39,13 @@ class SweepRunner : public QObject {
 
  public:
   explicit SweepRunner(QObject* parent = nullptr);
-  ~SweepRunner() override;  // cancels and joins
+  ~SweepRunner() override;  // cancels and waits
 
   // Starts `job`; false when one is still running.
   bool start(std::shared_ptr<const SweepJob> job);
   // Asks the running sweep to stop; finished(false, {}) follows once its threads have stopped.
   void cancel();
-  bool isRunning() const { return worker_.joinable(); }
+  bool isRunning() const { return jobs_.busy(); }
 
  signals:
   // On the GUI thread, once per finished set (any order): one value per metricColumns() column.
@@ -55,10 +55,7 @@ class SweepRunner : public QObject {
   void finished(bool completed, const QString& error);
 
  private:
-  void join();
-
-  std::thread worker_;
-  std::shared_ptr<std::atomic<bool>> cancel_;
+  JobQueue jobs_;
 };
 
 }  // namespace sg::ui

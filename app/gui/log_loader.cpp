@@ -2,8 +2,6 @@
 #include "log_loader.h"
 
 #include <QDir>
-#include <QThread>
-#include <algorithm>
 #include <atomic>
 
 #include "sonargrid/io/log_reader.h"
@@ -23,10 +21,6 @@ LogLoader::LogLoader(QObject* parent) : QObject(parent) {}
 
 LogLoader::~LogLoader() {
   if (job_) job_->cancel = true;
-  for (QThread* t : workers_) {
-    t->wait();
-    delete t;
-  }
 }
 
 QString LogLoader::path() const {
@@ -47,20 +41,22 @@ void LogLoader::start(const QString& path, const LogOptions& options, PoseSource
     if (total == 0) return;
     const int percent = static_cast<int>(done * 100 / total);
     if (job->lastPercent.exchange(percent) == percent) return;
-    QMetaObject::invokeMethod(
-        this,
-        [this, job, percent] {
-          if (job == job_) emit progress(percent);
-        },
-        Qt::QueuedConnection);
+    jobs_.post([this, job, percent] {
+      if (job == job_) emit progress(percent);
+    });
   };
-  QThread* worker =
-      QThread::create([this, job, o, file = QDir::toNativeSeparators(path), pose, cell = cellSize] {
-        std::shared_ptr<const Dataset> dataset;
-        QString error;
-        bool cancelled = false;
+  struct Loaded {
+    std::shared_ptr<const ScanSource> source;
+    bool cancelled = false;
+  };
+  // The job's flag is the load's own (LogOptions::cancel): cancel() raises it.
+  jobs_.run<Loaded>(
+      std::shared_ptr<std::atomic<bool>>(job, &job->cancel),
+      [o, file = QDir::toNativeSeparators(path), pose, cell = cellSize](const std::atomic<bool>*) {
+        Loaded out;
         try {
-          dataset = std::make_shared<const Dataset>(readLog(file.toStdString(), o));
+          auto source = openLog(file.toStdString(), o);
+          const std::shared_ptr<const Dataset> dataset = source->view();
           // The pose source is the one the window will map with.
           try {
             dataset->fittingGrid(pose == PoseSource::Truth && dataset->hasTruth()
@@ -70,24 +66,16 @@ void LogLoader::start(const QString& path, const LogOptions& options, PoseSource
           } catch (const GridLimitError& e) {
             throw e.inFile(file.toStdString());
           }
+          out.source = std::move(source);
         } catch (const LoadCancelled&) {
-          cancelled = true;
-        } catch (const std::exception& e) {
-          error = QString::fromStdString(e.what());
+          out.cancelled = true;
         }
-        QMetaObject::invokeMethod(
-            this,
-            [this, job, dataset = std::move(dataset), error, cancelled]() mutable {
-              finish(job, std::move(dataset), error, cancelled);
-            },
-            Qt::QueuedConnection);
+        return out;
+      },
+      [this, job](ui::JobOutcome<Loaded> outcome) {
+        const bool cancelled = outcome.skipped || (outcome.value && outcome.value->cancelled);
+        finish(job, outcome.value ? outcome.value->source : nullptr, outcome.error, cancelled);
       });
-  workers_.push_back(worker);
-  connect(worker, &QThread::finished, this, [this, worker] {
-    workers_.erase(std::remove(workers_.begin(), workers_.end(), worker), workers_.end());
-    worker->deleteLater();
-  });
-  worker->start();
 }
 
 QString LogLoader::cancel() {
@@ -98,7 +86,7 @@ QString LogLoader::cancel() {
   return path;
 }
 
-void LogLoader::finish(const std::shared_ptr<Job>& job, std::shared_ptr<const Dataset> dataset,
+void LogLoader::finish(const std::shared_ptr<Job>& job, std::shared_ptr<const ScanSource> source,
                        const QString& error, bool cancelled) {
   if (job != job_) return;  // cancelled or replaced: its outcome no longer matters
   job_.reset();
@@ -107,12 +95,12 @@ void LogLoader::finish(const std::shared_ptr<Job>& job, std::shared_ptr<const Da
     return;
   }
   QString message = error;
-  if (message.isEmpty() && dataset->scans.empty())
+  if (message.isEmpty() && source->size() == 0)
     message = job->path + tr(": the log holds no scans");
   if (!message.isEmpty())
     emit failed(job->path, message, job->quiet);
   else
-    emit loaded(job->path, std::move(dataset), job->quiet);
+    emit loaded(job->path, std::move(source), job->quiet);
 }
 
 }  // namespace sg::app

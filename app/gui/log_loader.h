@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #pragma once
-// Loads a log on a worker thread, one at a time: a new load cancels the one running. The outcome
+// Loads a log as a job of a JobQueue (job_queue.h), one at a time: a new load cancels the one
+// running and starts when it has stopped (at its next block). The outcome
 // reaches the GUI thread as a signal; a cancelled or replaced load's outcome is dropped. The worker
 // also refuses a log no grid can hold (a pose at 1e12 m), so that the document open before stays.
 
 #include <QObject>
 #include <QString>
 #include <memory>
-#include <vector>
 
+#include "job_queue.h"
 #include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/scan_source.h"
 #include "sonargrid/io/log_options.h"
-
-class QThread;
 
 namespace sg::app {
 
@@ -21,7 +21,7 @@ class LogLoader : public QObject {
 
  public:
   explicit LogLoader(QObject* parent = nullptr);
-  // Lets every worker end (at its next block) before the loader goes: each posts to it.
+  // Cancels the running load and waits for it to stop (at its next block).
   ~LogLoader() override;
 
   // `pose` and `cellSize`: the grid the log will be mapped on, checked on the worker.
@@ -36,18 +36,20 @@ class LogLoader : public QObject {
  signals:
   // Percent of the file's bytes read (throttled: once per whole percent).
   void progress(int percent);
-  void loaded(const QString& path, std::shared_ptr<const sg::Dataset> dataset, bool quiet);
+  // The log as a complete source (openLog(), io/log_reader.h).
+  void loaded(const QString& path, std::shared_ptr<const sg::ScanSource> source, bool quiet);
   void failed(const QString& path, const QString& message, bool quiet);
   // The worker stopped on its cancel flag while the loader still waited for it.
   void cancelled(const QString& path);
 
  private:
   struct Job;
-  void finish(const std::shared_ptr<Job>& job, std::shared_ptr<const Dataset> dataset,
+  void finish(const std::shared_ptr<Job>& job, std::shared_ptr<const ScanSource> source,
               const QString& error, bool cancelled);
 
-  std::shared_ptr<Job> job_;       // the running load, if any
-  std::vector<QThread*> workers_;  // still running (a cancelled one ends soon)
+  std::shared_ptr<Job> job_;  // the running load, if any
+  // Reading maps nothing: no share of the thread budget. Last: destroyed (waited for) first.
+  ui::JobQueue jobs_{ui::JobQueue::Share::Unleased};
 };
 
 }  // namespace sg::app

@@ -8,6 +8,7 @@
 
 #include "remap_controller.h"
 #include "sonargrid/engine/scan_source.h"
+#include "sonargrid/io/log_reader.h"
 #include "sonargrid/io/sglog.h"
 
 using namespace sg;
@@ -318,6 +319,72 @@ class TestRemapController : public QObject {
     QVERIFY(mapped.wait(60000));
     QCOMPARE(mapped.last().at(3).toBool(), true);
     QVERIFY(sameLayers(*mapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>(), *whole));
+  }
+
+  void aLoadedLogTakesTheLiveRoad() {
+    // One road for scans (issue 44): a log opened by the reader's entry point (openLog(), a
+    // complete ScanSource) and the same scans streamed into a live source a few at a time, as a
+    // robot link appends them, both mapped through startLive(), give the same grid. Each has the
+    // bits of a batch run on its own limits (Mapper: batch and incremental mapping are identical,
+    // also when the grid grew on the way: GridSpec::base), and the two agree cell for cell. The
+    // room log comes 10 scans to an append.
+    const std::shared_ptr<ScanSource> opened = openLog(SONARGRID_DATASETS "/room/room.sglog");
+    QVERIFY(opened->complete());
+    const std::shared_ptr<const Dataset> log = opened->view();
+    QCOMPARE(opened->size(), log->scans.size());
+    const MapperSettings s = settingsFor("parameterized", "bayes-recursive");
+
+    RemapController whole;
+    QSignalSpy wholeMapped(&whole, &RemapController::mapped);
+    whole.startLive(opened, 0.05, s);
+    QVERIFY(wholeMapped.wait(60000));
+    const auto fromLog = wholeMapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>();
+
+    auto stream = std::make_shared<ScanSource>(log->name, log->ring);
+    RemapController live;
+    QSignalSpy liveMapped(&live, &RemapController::mapped);
+    stream->append(scansOf(*log, 0, 10));
+    live.startLive(stream, 0.05, s);
+    for (std::size_t k = 10; k < log->scans.size(); k += 10) {
+      stream->append(scansOf(*log, k, std::min(k + 10, log->scans.size())));
+      live.scansAppended();
+      QCoreApplication::processEvents();
+    }
+    stream->finish();
+    QTRY_VERIFY_WITH_TIMEOUT(!live.busy(), 120000);
+    const auto fromStream = liveMapped.last().at(0).value<std::shared_ptr<const OccupancyMap>>();
+
+    QVERIFY(sameLayers(*fromLog, batchOn(*log, log->scans.size(), s, fromLog->spec)));
+    QVERIFY(sameLayers(*fromStream, batchOn(*log, log->scans.size(), s, fromStream->spec)));
+    // The same grid: the two limits differ (a live grid grows by half its size whenever a batch
+    // reaches past it, so its limits depend on how the scans were batched) but lie on one lattice
+    // of cells from the first pose, and every cell either observed holds the same value in both.
+    const GridSpec& a = fromLog->spec;
+    const GridSpec& b = fromStream->spec;
+    const double sx = (b.origin.x() - a.origin.x()) / a.cellSize;
+    const double sy = (b.origin.y() - a.origin.y()) / a.cellSize;
+    QVERIFY(std::abs(sx - std::round(sx)) < 1e-6 && std::abs(sy - std::round(sy)) < 1e-6);
+    const int dx = static_cast<int>(std::lround(sx)), dy = static_cast<int>(std::lround(sy));
+    auto observedCount = [](const OccupancyMap& m) {
+      return std::count(m.observed.begin(), m.observed.end(), std::uint8_t{1});
+    };
+    std::ptrdiff_t common = 0;
+    for (int y = 0; y < b.height; ++y)
+      for (int x = 0; x < b.width; ++x) {
+        const int ax = x + dx, ay = y + dy;
+        const std::size_t j = static_cast<std::size_t>(y) * b.width + x;
+        if (ax < 0 || ay < 0 || ax >= a.width || ay >= a.height) {
+          QCOMPARE(fromStream->observed[j], std::uint8_t{0});
+          continue;
+        }
+        const std::size_t i = static_cast<std::size_t>(ay) * a.width + ax;
+        QCOMPARE(fromStream->observed[j], fromLog->observed[i]);
+        QCOMPARE(fromStream->level[j], fromLog->level[i]);
+        QCOMPARE(fromStream->probability[j], fromLog->probability[i]);
+        common += fromLog->observed[i];
+      }
+    QVERIFY(common > 1000);
+    QCOMPARE(common, observedCount(*fromLog));  // none of the log's observed cells is left out
   }
 
   void failureIsReported() {
