@@ -33,9 +33,14 @@ void Document::restore(const ProjectState& state, bool modified) {
 }
 
 void Document::setLog(const QString& path, std::shared_ptr<const Dataset> dataset) {
+  setLog(path, dataset ? std::make_shared<const ScanSource>(std::move(dataset)) : nullptr);
+}
+
+void Document::setLog(const QString& path, std::shared_ptr<const ScanSource> source) {
   const bool changed = path != state_.logPath;
   state_.logPath = path;
-  dataset_ = std::move(dataset);
+  source_ = std::move(source);
+  dataset_ = source_ ? source_->view() : nullptr;
   if (changed && !projectPath_.isEmpty()) setDirty(true);
   emit logChanged();
 }

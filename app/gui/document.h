@@ -17,6 +17,7 @@
 
 #include "project.h"
 #include "sonargrid/data/dataset.h"
+#include "sonargrid/engine/scan_source.h"
 
 class QUndoStack;
 
@@ -41,9 +42,13 @@ class Document : public QObject {
 
   // --- logs ---
   const QString& logPath() const { return state_.logPath; }
+  // The log's scans (scan_source.h: the one road for scans) and their complete view.
+  const std::shared_ptr<const ScanSource>& source() const { return source_; }
   const std::shared_ptr<const Dataset>& dataset() const { return dataset_; }
   // A loaded log. Marks a saved project modified (its log changed); an untitled one is not
   // (nothing of the user's is lost by not saving it).
+  void setLog(const QString& path, std::shared_ptr<const ScanSource> source);
+  // A log in memory: its complete source.
   void setLog(const QString& path, std::shared_ptr<const Dataset> dataset);
   const QString& secondLogPath() const { return state_.secondLogPath; }
   const std::shared_ptr<const Dataset>& secondDataset() const { return secondDataset_; }
@@ -131,7 +136,8 @@ class Document : public QObject {
 
   QUndoStack* undo_;
   ProjectState state_;
-  std::shared_ptr<const Dataset> dataset_;
+  std::shared_ptr<const ScanSource> source_;
+  std::shared_ptr<const Dataset> dataset_;  // source_->view()
   std::shared_ptr<const Dataset> secondDataset_;
   QString referenceLog_;
   QString projectPath_;

@@ -14,19 +14,20 @@
 #include <QMessageBox>
 #include <QProgressBar>
 #include <QPushButton>
-#include <QScopedValueRollback>
 #include <QSettings>
 #include <QStatusBar>
 #include <QTimer>
 #include <iostream>
 
 #include "autosave.h"
+#include "beam_dock.h"
 #include "beam_model_view.h"
 #include "csv_import_dialog.h"
 #include "document.h"
 #include "log_loader.h"
 #include "main_window_metrics.h"
 #include "main_window_sweep.h"
+#include "map_dock.h"
 #include "parameter_panel.h"
 #include "reference_editing.h"
 #include "remap_controller.h"
@@ -35,6 +36,7 @@
 #include "sonargrid/engine/update_rule.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/reference/read_reference.h"
+#include "status_report.h"
 #include "timeline.h"
 
 // The window's resources live in this static library; a static library's resource initialiser
@@ -58,8 +60,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
       loader_(new LogLoader(this)),
       view_(new ui::GridView(backend, this)),
       remap_(new ui::RemapController(this)),
-      hoverLabel_(new QLabel(this)),
-      remapLabel_(new QLabel(this)) {
+      status_(new StatusReport(statusBar())) {
   initialiseResources();
   setWindowIcon(QIcon(QStringLiteral(":/sonargrid/sonargrid.svg")));
   setCentralWidget(view_);
@@ -76,34 +77,9 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   rememberSettingsTimer_->setSingleShot(true);
   rememberSettingsTimer_->setInterval(1000);
   connect(rememberSettingsTimer_, &QTimer::timeout, this, &MainWindow::rememberSettings);
-  beamSettingsTimer_ = new QTimer(this);
-  beamSettingsTimer_->setSingleShot(true);
-  beamSettingsTimer_->setInterval(kBeamIntervalMs);
-  connect(beamSettingsTimer_, &QTimer::timeout, this, &MainWindow::showBeamSettings);
-  beamShown_.start();
-  summaryTimer_ = new QTimer(this);
-  summaryTimer_->setSingleShot(true);
-  summaryTimer_->setInterval(kSummaryIntervalMs);
-  connect(summaryTimer_, &QTimer::timeout, this, &MainWindow::updateSummary);
 
-  remapLabel_->setObjectName(QStringLiteral("remapStatus"));
-  // Wide enough for its longest text, so a new time does not lay the status bar out again.
-  remapLabel_->setMinimumWidth(
-      remapLabel_->fontMetrics().horizontalAdvance(tr("preview at 99.9 cm (9999 ms)…")) + 8);
-  statusBar()->addWidget(hoverLabel_, 1);
-  statusBar()->addPermanentWidget(remapLabel_);
-  loadBar_ = new QProgressBar(this);
-  loadBar_->setRange(0, 100);
-  loadBar_->setFixedWidth(loadBar_->fontMetrics().horizontalAdvance(QLatin1Char('x')) * 40);
-  loadBar_->setVisible(false);
-  loadCancelButton_ = new QPushButton(tr("Cancel"), this);
-  loadCancelButton_->setObjectName(QStringLiteral("cancelLoading"));
-  loadCancelButton_->setToolTip(tr("Stop loading (Esc); the open log stays"));
-  loadCancelButton_->setVisible(false);
-  connect(loadCancelButton_, &QPushButton::clicked, this, &MainWindow::cancelLoad);
-  statusBar()->addPermanentWidget(loadBar_);
-  statusBar()->addPermanentWidget(loadCancelButton_);
-  hoverLabel_->setText(tr("Open a log (Ctrl+O) or drop one on the window."));
+  connect(status_, &StatusReport::cancelLoadClicked, this, &MainWindow::cancelLoad);
+  status_->setHint(tr("Open a log (Ctrl+O) or drop one on the window."));
 
   createActions();
   createDocks();
@@ -115,17 +91,16 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   installSweepView(this);
   restoreWindowState();
   connectDocument();
-  mappedSettings_ = document_->mapperSettings();
 
   connect(loader_, &LogLoader::progress, this, [this](int percent) {
-    loadBar_->setValue(percent);
+    status_->loadProgress(percent);
     emit loadProgress(percent);
   });
   connect(loader_, &LogLoader::loaded, this,
-          [this](const QString& path, std::shared_ptr<const Dataset> dataset, bool) {
+          [this](const QString& path, std::shared_ptr<const ScanSource> source, bool) {
             hideLoadProgress();
             lastLoadSucceeded_ = true;
-            adoptLog(path, std::move(dataset));
+            adoptLog(path, std::move(source));
             emit loaded(path);
           });
   connect(loader_, &LogLoader::failed, this, &MainWindow::onLoadFailed);
@@ -136,15 +111,12 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
     emit loadCancelled(path);
   });
 
-  connect(view_, &ui::GridView::hoverText, hoverLabel_, &QLabel::setText);
-  connect(view_, &ui::GridView::repainted, this, [this] {
-    if (beamSettingsPending_ && !remap_->busy() && beamShown_.elapsed() >= kBeamIntervalMs)
-      showBeamSettings();
-  });
+  connect(view_, &ui::GridView::hoverText, status_, &StatusReport::setHint);
+  connect(view_, &ui::GridView::repainted, this,
+          [this] { beamDock_->gridRepainted(remap_->busy()); });
   connect(view_, &ui::GridView::viewChanged, this, [this] { document_->setView(view_->view()); });
   connect(remap_, &ui::RemapController::mapped, this,
           [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64, bool incremental) {
-            fullMap_ = map;
             view_->setMap(std::move(map));
             // A project's saved view replaces the fit of its first map.
             if (pendingView_) view_->setView(*std::exchange(pendingView_, std::nullopt));
@@ -158,23 +130,21 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   connect(remap_, &ui::RemapController::previewed, this,
           [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64) {
             view_->setMap(std::move(map));
-            remapLabel_->setText(tr("preview at %1 cm (%2 ms)…")
-                                     .arg(document_->cellSize() * kPreviewFactor * 100.0, 0, 'g', 3)
-                                     .arg(ms, 0, 'f', 0));
+            status_->previewed(document_->cellSize() * kPreviewFactor * 100.0, ms);
           });
   connect(remap_, &ui::RemapController::failed, this, [this](const QString& message, quint64) {
-    remapLabel_->setText(tr("mapping failed"));
+    status_->mappingFailed();
     // A live robot's map has no file yet: the message says which map failed.
     const QString where =
         document_->logPath().isEmpty() ? tr("the live map") : document_->logPath();
     reportError(tr("Mapping failed"), where + QStringLiteral(": ") + message, false);
   });
   connect(remap_, &ui::RemapController::busyChanged, this, [this](bool busy) {
-    if (busy) remapLabel_->setText(tr("mapping…"));
+    if (busy) status_->mapping();
   });
   connect(timeline_, &ui::Timeline::timeChanged, this, &MainWindow::onTimeChanged);
   connect(timeline_, &ui::Timeline::playingChanged, this,
-          [this](bool playing) { playAction_->setChecked(playing); });
+          [this](bool playing) { actions_.play->setChecked(playing); });
 
   autosave_ = new Autosave(
       document_, [this] { return projectState(); }, this);
@@ -197,6 +167,14 @@ const std::shared_ptr<const sg::Dataset>& MainWindow::dataset() const {
   return document_->dataset();
 }
 
+ui::BeamModelView* MainWindow::beamModelView() const {
+  return beamDock_->view();
+}
+
+std::optional<std::size_t> MainWindow::beamSonar() const {
+  return beamDock_->sonar();
+}
+
 const QString& MainWindow::logPath() const {
   return document_->logPath();
 }
@@ -206,7 +184,9 @@ const sg::MapperSettings& MainWindow::mapperSettings() const {
 }
 
 void MainWindow::setMapperSettings(const MapperSettings& settings, bool ruleNamed) {
-  const QScopedValueRollback<bool> named(ruleNamed_, ruleNamed);
+  // A rule the user named: the panel shows it first, without saying that the rule changed with
+  // the model; the document's change then finds the panel showing it already.
+  if (ruleNamed) panel_->setSettings(settings, true);
   document_->setMapperSettings(settings);  // shows them (showSettings) before it returns
 }
 
@@ -220,7 +200,7 @@ void MainWindow::connectDocument() {
   connect(document_, &Document::referenceChanged, this, &MainWindow::onReferenceChanged);
   connect(document_, &Document::overlaysChanged, this, [this](ui::Overlays overlays) {
     view_->setOverlays(overlays);
-    for (QAction* a : overlayActions_) {
+    for (QAction* a : actions_.overlays) {
       const QSignalBlocker block(a);
       a->setChecked(overlays.testFlag(static_cast<ui::Overlay>(a->data().toInt())));
     }
@@ -237,13 +217,14 @@ void MainWindow::connectDocument() {
     std::vector<ui::BeamModelView::NamedSettings> pinned;
     for (const PinnedRow& row : document_->pinnedRows())
       pinned.push_back({row.label, row.settings});
-    if (beamView_) beamView_->setPinnedConfigurations(std::move(pinned));
+    if (beamDock_) beamDock_->view()->setPinnedConfigurations(std::move(pinned));
   });
 }
 
 void MainWindow::onSettingsChanged() {
   showSettings();
-  if (adopting_) return;  // adoptLog starts the re-map itself, with the new log
+  // A log being opened: adoptLog() maps it once the document holds all of it.
+  if (document_->source() && remap_->source() != document_->source()) return;
   const MapperSettings& settings = document_->mapperSettings();
   // The same settings again (a menu item that is already checked, a panel echo) map nothing new.
   if (document_->dataset() && settings == remap_->settings()) return;
@@ -252,11 +233,11 @@ void MainWindow::onSettingsChanged() {
 
 void MainWindow::onCellSizeChanged(double metres) {
   QSettings().setValue("mapping/cell", metres);
-  if (cellSpin_ && cellSpin_->value() != metres) {
-    const QSignalBlocker block(cellSpin_);
-    cellSpin_->setValue(metres);
-  }
-  if (!adopting_ && document_->dataset()) remap_->setDataset(document_->dataset(), metres);
+  mapDock_->setCellSize(metres);
+  // Not while a log is being opened (adoptLog() maps it), nor for a live robot's map (its session
+  // re-maps it).
+  if (document_->source() && remap_->source() == document_->source())
+    remap_->setSource(document_->source(), metres);
 }
 
 void MainWindow::onReferenceChanged() {
@@ -273,33 +254,19 @@ void MainWindow::showSettings() {
   // Writing QSettings syncs the file to disk, tens of ms on a busy machine: a slider dragged
   // across its range would stall the GUI thread on every step. Remembered once the user pauses.
   rememberSettingsTimer_->start();
-  if (modelMenu_ && (settings.model != menuSettings_.model || settings.rule != menuSettings_.rule ||
-                     settings.pose != menuSettings_.pose))
+  if (actions_.modelMenu &&
+      (settings.model != actions_.menuSettings.model ||
+       settings.rule != actions_.menuSettings.rule || settings.pose != actions_.menuSettings.pose))
     rebuildMappingMenu();
   view_->setNativeName(QString::fromStdString(updateRuleInfo(settings.rule).nativeName));
-  panel_->setSettings(settings, ruleNamed_);
-  // The beam view's picture costs 5-10 ms of GUI thread, and on two cores every ms of it is taken
-  // from the re-map: drawn once the grid shows the new map, or kBeamIntervalMs after the change
-  // (a long re-map of a big log), but not more often than every kBeamIntervalMs, so a dragged
-  // slider moves it several times a second without slowing the map.
-  if (document_->dataset()) {
-    beamSettingsPending_ = true;
-    if (!beamSettingsTimer_->isActive()) beamSettingsTimer_->start();
-  } else {
-    beamView_->setSettings(settings);
-  }
+  panel_->setSettings(settings);
+  // Paced while a log re-maps (BeamDock::setSettings).
+  beamDock_->setSettings(settings, document_->dataset() != nullptr);
   // The robot, its path and the current beams depend on the pose source only: a parameter change
   // must not redraw them (and the grid's overlays) on every step of a dragged slider.
   if (scanShownPose_ != settings.pose) showCurrentScan();
-  if (!summaryTimer_->isActive()) summaryTimer_->start();
+  mapDock_->scheduleSummary();
   updateTitle();
-}
-
-void MainWindow::showBeamSettings() {
-  beamSettingsTimer_->stop();
-  beamSettingsPending_ = false;
-  beamShown_.restart();
-  beamView_->setSettings(document_->mapperSettings());
 }
 
 void MainWindow::rememberSettings() {
@@ -375,11 +342,10 @@ bool MainWindow::waitForMap(int timeoutMs) {
 }
 
 void MainWindow::onMapped(double elapsedMs) {
-  lastRemapMs_ = elapsedMs;
-  remapLabel_->setText(tr("re-mapped in %1 ms").arg(elapsedMs, 0, 'f', 1));
+  status_->mapped(elapsedMs);
   // The summary's rich text is laid out again on every change (a few ms): a few times a second is
   // all a reader needs while a slider is dragged.
-  if (!summaryTimer_->isActive()) summaryTimer_->start();
+  mapDock_->scheduleSummary();
 }
 
 void MainWindow::onTimeChanged(double t, std::size_t) {
@@ -389,7 +355,7 @@ void MainWindow::onTimeChanged(double t, std::size_t) {
 }
 
 void MainWindow::updateSummary() {
-  if (!summary_) return;
+  if (!mapDock_) return;
   QString html;
   const Dataset* run = document_->dataset().get();
   const MapperSettings& settings = document_->mapperSettings();
@@ -415,7 +381,7 @@ void MainWindow::updateSummary() {
                   .arg(map->spec.height)
                   .arg(map->spec.cellSize)
                   .arg(map->filledCount())
-                  .arg(lastRemapMs_, 0, 'f', 1);
+                  .arg(status_->lastMapMs(), 0, 'f', 1);
     }
     if (const auto& reference = document_->reference())
       html += QStringLiteral("<hr>reference: %1 (%2 objects)%3")
@@ -425,7 +391,7 @@ void MainWindow::updateSummary() {
                   .arg(reference->objects.size())
                   .arg(document_->referenceModified() ? tr(", edited") : QString());
   }
-  summary_->setText(html);
+  mapDock_->setSummary(html);
 }
 
 void MainWindow::updateTitle() {
@@ -455,12 +421,6 @@ void MainWindow::closeEvent(QCloseEvent* event) {
   s.setValue("window/state", saveState(kLayoutVersion));
   autosave_->remove();  // a clean exit leaves nothing to recover
   QMainWindow::closeEvent(event);
-}
-
-bool MainWindow::eventFilter(QObject* watched, QEvent* event) {
-  // The cell size's arrow buttons held down: one undo step, ended when the button is released.
-  if (watched == cellSpin_ && event->type() == QEvent::MouseButtonRelease) document_->endDrag();
-  return QMainWindow::eventFilter(watched, event);
 }
 
 }  // namespace sg::app

@@ -17,6 +17,7 @@
 #include "project.h"
 #include "sonargrid/data/dataset.h"
 #include "sonargrid/engine/mapper.h"
+#include "sonargrid/engine/scan_source.h"
 #include "sonargrid/io/log_options.h"
 #include "sonargrid/reference/reference_map.h"
 
@@ -43,8 +44,11 @@ class Timeline;
 namespace sg::app {
 
 class Autosave;
+class BeamDock;
 class Document;
 class LogLoader;
+class MapDock;
+class StatusReport;
 
 class MainWindow : public QMainWindow {
   Q_OBJECT
@@ -110,9 +114,9 @@ class MainWindow : public QMainWindow {
   ui::Timeline* timeline() const { return timeline_; }
   ui::RemapController* remapController() const { return remap_; }
   ui::ParameterPanel* parameterPanel() const { return panel_; }
-  ui::BeamModelView* beamModelView() const { return beamView_; }
+  ui::BeamModelView* beamModelView() const;
   // The sonar whose reading of the current scan the beam view shows (highlighted in the grid).
-  std::optional<std::size_t> beamSonar() const { return beamSonar_; }
+  std::optional<std::size_t> beamSonar() const;
   // Shows sonar `sonar`'s reading of the current scan in the beam view from now on (while the
   // scans hold one); false when the current scan has no reading of it.
   bool chooseBeamSonar(std::size_t sonar);
@@ -143,7 +147,6 @@ class MainWindow : public QMainWindow {
 
  protected:
   void closeEvent(QCloseEvent* event) override;
-  bool eventFilter(QObject* watched, QEvent* event) override;
   void dragEnterEvent(QDragEnterEvent* event) override;
   void dropEvent(QDropEvent* event) override;
 
@@ -156,7 +159,6 @@ class MainWindow : public QMainWindow {
   // Shows the document's settings in the menus, title, summary, panel and beam view, and
   // remembers them soon.
   void showSettings();
-  void showBeamSettings();
   // Writes the settings to QSettings now (what the next session starts with).
   void rememberSettings();
   void updateSummary();
@@ -167,7 +169,7 @@ class MainWindow : public QMainWindow {
   void showCurrentScan();
   bool reportError(const QString& title, const QString& message, bool quiet);
   // Makes `dataset` the document's log: timeline, views, re-map (or a pending project's state).
-  void adoptLog(const QString& path, std::shared_ptr<const sg::Dataset> dataset);
+  void adoptLog(const QString& path, std::shared_ptr<const sg::ScanSource> source);
   void onLoadFailed(const QString& path, const QString& message, bool quiet);
   void hideLoadProgress();
 
@@ -221,21 +223,12 @@ class MainWindow : public QMainWindow {
   ui::GridView* view_;
   ui::Timeline* timeline_ = nullptr;
   ui::ParameterPanel* panel_ = nullptr;
-  ui::BeamModelView* beamView_ = nullptr;
+  BeamDock* beamDock_ = nullptr;
+  MapDock* mapDock_ = nullptr;
   ui::CellInspector* inspector_ = nullptr;
   ui::CellPicker* picker_ = nullptr;
-  QComboBox* readingChooser_ = nullptr;
-  QDoubleSpinBox* cellSpin_ = nullptr;
-  std::optional<std::size_t> chosenSonar_;  // the user's pick; none: the first reading with echo
-  std::optional<std::size_t> beamSonar_;    // what the beam view shows now
   ui::RemapController* remap_;
-  QLabel* hoverLabel_;
-  QLabel* remapLabel_;
-  QLabel* summary_ = nullptr;
-  QProgressBar* loadBar_ = nullptr;
-  QPushButton* loadCancelButton_ = nullptr;
-  QAction* cancelLoadAction_ = nullptr;
-  QAction* importCsvAction_ = nullptr;
+  StatusReport* status_;
   bool lastLoadSucceeded_ = false;
   // A project whose log is loading: it becomes the document when the log has loaded.
   struct PendingProject {
@@ -246,18 +239,9 @@ class MainWindow : public QMainWindow {
   };
   std::optional<PendingProject> pendingProject_;
   std::optional<ui::ViewTransform> pendingView_;  // a project's view, shown with its first map
-  bool adopting_ = false;   // adoptLog is changing the document: it starts the re-map itself
-  bool ruleNamed_ = false;  // setMapperSettings(…, true) is changing the document
 
-  sg::MapperSettings menuSettings_;    // what the Mapping menu was last built for
-  sg::MapperSettings mappedSettings_;  // what the remap controller was last given
   QTimer* rememberSettingsTimer_ = nullptr;
-  QTimer* beamSettingsTimer_ = nullptr;
-  bool beamSettingsPending_ = false;
-  QElapsedTimer beamShown_;                      // since the beam view last took new settings
-  std::optional<PoseSource> scanShownPose_;      // the pose source of the scan drawn, if any
-  std::shared_ptr<const OccupancyMap> fullMap_;  // the last map delivered by mapped()
-  static constexpr int kBeamIntervalMs = 150;
+  std::optional<PoseSource> scanShownPose_;  // the pose source of the scan drawn, if any
   // The docks right of the grid share one column this wide on first launch: 1280 − 330 leaves
   // the grid more than 60 % of the window.
   static constexpr int kRightColumnWidth = 330;
@@ -267,38 +251,42 @@ class MainWindow : public QMainWindow {
   static constexpr int kLayoutVersion = 1;
   // The Cell Inspector's height when it is shown in the row under the grid.
   static constexpr int kInspectorHeight = 250;
-  QTimer* summaryTimer_ = nullptr;
-  static constexpr int kSummaryIntervalMs = 250;
   static constexpr int kPreviewFactor = 2;
   // A preview costs about 60 % of a full re-map on a log of a few thousand readings (the readings'
   // own cost stays; raschke-multi at 5 cm: 25 against 39 ms), and it runs first: on a log that
   // re-maps in tens of ms it showed a change some 15 ms sooner and the full map 25 ms later
   // (bench_remap_latency). It pays where the full map takes long enough to be waited for.
   static constexpr double kPreviewAboveMs = 80.0;
-  double lastRemapMs_ = 0.0;
   QStringList recent_;
-
-  QMenu* recentMenu_ = nullptr;
-  QMenu* modelMenu_ = nullptr;
-  QMenu* ruleMenu_ = nullptr;
-  QActionGroup* poseGroup_ = nullptr;
-  QAction* openAction_ = nullptr;
-  QAction* openReferenceAction_ = nullptr;
-  QAction* openProjectAction_ = nullptr;
-  QAction* saveProjectAction_ = nullptr;
-  QAction* saveProjectAsAction_ = nullptr;
-  QAction* undoAction_ = nullptr;
-  QAction* redoAction_ = nullptr;
-  QAction* cellSizeAction_ = nullptr;
-  QAction* exportViewPngAction_ = nullptr;
-  QAction* exportViewSvgAction_ = nullptr;
-  QAction* exportMapPngAction_ = nullptr;
-  QAction* exportRosAction_ = nullptr;
-  QAction* playAction_ = nullptr;
-  QAction* stepForwardAction_ = nullptr;
-  QAction* stepBackAction_ = nullptr;
-  QAction* fitAction_ = nullptr;
-  QList<QAction*> overlayActions_;
+  // The menus' actions (main_window_menus.cpp), held together as Qt Designer's Ui classes hold
+  // theirs.
+  struct Actions {
+    QAction* open = nullptr;
+    QAction* openReference = nullptr;
+    QAction* openProject = nullptr;
+    QAction* saveProject = nullptr;
+    QAction* saveProjectAs = nullptr;
+    QAction* importCsv = nullptr;
+    QAction* cancelLoad = nullptr;
+    QAction* undo = nullptr;
+    QAction* redo = nullptr;
+    QAction* cellSize = nullptr;
+    QAction* exportViewPng = nullptr;
+    QAction* exportViewSvg = nullptr;
+    QAction* exportMapPng = nullptr;
+    QAction* exportRos = nullptr;
+    QAction* play = nullptr;
+    QAction* stepForward = nullptr;
+    QAction* stepBack = nullptr;
+    QAction* fit = nullptr;
+    QList<QAction*> overlays;
+    QMenu* recentMenu = nullptr;
+    QMenu* modelMenu = nullptr;
+    QMenu* ruleMenu = nullptr;
+    QActionGroup* poseGroup = nullptr;
+    sg::MapperSettings menuSettings;  // what the Mapping menu was last built for
+  };
+  Actions actions_;
 };
 
 }  // namespace sg::app

@@ -1,19 +1,15 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The window's docks: timeline, map summary with the cell size, parameter panel, beam model (and
 // the reading of the current scan it shows).
-#include <QApplication>
-#include <QComboBox>
 #include <QDockWidget>
-#include <QDoubleSpinBox>
-#include <QHBoxLayout>
-#include <QLabel>
 #include <QSettings>
-#include <QVBoxLayout>
 
+#include "beam_dock.h"
 #include "beam_model_view.h"
 #include "document.h"
 #include "grid_view.h"
 #include "main_window.h"
+#include "map_dock.h"
 #include "parameter_panel.h"
 #include "timeline.h"
 
@@ -27,46 +23,19 @@ void MainWindow::createDocks() {
   timelineDock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable |
                             QDockWidget::DockWidgetClosable);
   addDockWidget(Qt::BottomDockWidgetArea, timelineDock);
-  connect(playAction_, &QAction::toggled, timeline_, &ui::Timeline::setPlaying);
-  connect(stepForwardAction_, &QAction::triggered, timeline_, &ui::Timeline::stepForward);
-  connect(stepBackAction_, &QAction::triggered, timeline_, &ui::Timeline::stepBackward);
+  connect(actions_.play, &QAction::toggled, timeline_, &ui::Timeline::setPlaying);
+  connect(actions_.stepForward, &QAction::triggered, timeline_, &ui::Timeline::stepForward);
+  connect(actions_.stepBack, &QAction::triggered, timeline_, &ui::Timeline::stepBackward);
 
-  summary_ = new QLabel(this);
-  summary_->setTextFormat(Qt::RichText);
-  summary_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
-  summary_->setMargin(8);
-  summary_->setMinimumWidth(220);
-  summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  // The cell size heads the Map dock: it decides the grid the summary describes.
-  cellSpin_ = new QDoubleSpinBox(this);
-  cellSpin_->setObjectName(QStringLiteral("cellSize"));
-  cellSpin_->setRange(kMinCellSize, kMaxCellSize);
-  cellSpin_->setDecimals(3);
-  cellSpin_->setSingleStep(0.005);
-  cellSpin_->setSuffix(tr(" m"));
-  cellSpin_->setValue(document_->cellSize());
-  cellSpin_->setKeyboardTracking(false);  // a typed value is one edit, on Enter or leaving the box
-  cellSpin_->setToolTip(tr("Side of a grid cell in metres (View ▸ Cell Size…); undoable"));
-  cellSpin_->installEventFilter(this);
-  connect(cellSpin_, &QDoubleSpinBox::valueChanged, this, [this](double metres) {
-    // Held arrow buttons repeat: one undo step until the button is released (eventFilter).
-    document_->setCellSize(metres, QApplication::mouseButtons() != Qt::NoButton);
-  });
-  auto* cellLabel = new QLabel(tr("&Cell size:"), this);
-  cellLabel->setBuddy(cellSpin_);
-  auto* mapHost = new QWidget(this);
-  auto* cellRow = new QHBoxLayout;
-  cellRow->setContentsMargins(8, 8, 8, 0);
-  cellRow->addWidget(cellLabel);
-  cellRow->addWidget(cellSpin_);
-  cellRow->addStretch(1);
-  auto* mapLayout = new QVBoxLayout(mapHost);
-  mapLayout->setContentsMargins(0, 0, 0, 0);
-  mapLayout->addLayout(cellRow);
-  mapLayout->addWidget(summary_, 1);
+  mapDock_ = new MapDock(document_->cellSize(), this);
+  // Held arrow buttons: one undo step, ended when the button is released.
+  connect(mapDock_, &MapDock::cellSizeEdited, this,
+          [this](double metres, bool held) { document_->setCellSize(metres, held); });
+  connect(mapDock_, &MapDock::cellSizeReleased, document_, &Document::endDrag);
+  connect(mapDock_, &MapDock::summaryDue, this, &MainWindow::updateSummary);
   auto* summaryDock = new QDockWidget(tr("Map"), this);
   summaryDock->setObjectName(QStringLiteral("mapDock"));
-  summaryDock->setWidget(mapHost);
+  summaryDock->setWidget(mapDock_);
 
   // The parameter panel: its changes come back through setMapperSettings, which shows them
   // everywhere else (the panel itself ignores settings it already holds).
@@ -82,34 +51,11 @@ void MainWindow::createDocks() {
   panelDock->toggleViewAction()->setShortcut(QKeySequence(tr("Ctrl+Shift+P")));
 
   // The beam-model view of one reading of the current scan, with the panel's model.
-  auto* beamHost = new QWidget(this);
-  beamView_ = new ui::BeamModelView(beamHost);
-  beamView_->setSettings(document_->mapperSettings());
-  readingChooser_ = new QComboBox(beamHost);
-  readingChooser_->setObjectName(QStringLiteral("readingChooser"));
-  readingChooser_->setToolTip(
-      tr("The reading of the current scan whose beam is drawn; its beam "
-         "is highlighted in the grid view"));
-  readingChooser_->setSizeAdjustPolicy(QComboBox::AdjustToContents);
-  connect(readingChooser_, &QComboBox::activated, this, [this](int index) {
-    chooseBeamSonar(readingChooser_->itemData(index).value<std::size_t>());
-  });
-  auto* readingLabel = new QLabel(tr("Current scan's r&eading:"), beamHost);
-  readingLabel->setBuddy(readingChooser_);
-  auto* readingRow = new QHBoxLayout;
-  // Lined up with the beam view's own controls below.
-  const QMargins inner = beamView_->layout()->contentsMargins();
-  readingRow->setContentsMargins(inner.left(), 0, inner.right(), 0);
-  readingRow->addWidget(readingLabel);
-  readingRow->addWidget(readingChooser_);
-  readingRow->addStretch(1);
-  auto* beamLayout = new QVBoxLayout(beamHost);
-  beamLayout->setContentsMargins(0, 4, 0, 0);
-  beamLayout->addLayout(readingRow);
-  beamLayout->addWidget(beamView_, 1);
+  beamDock_ = new BeamDock(document_->mapperSettings(), this);
+  connect(beamDock_, &BeamDock::sonarPicked, this, &MainWindow::chooseBeamSonar);
   auto* beamDock = new QDockWidget(tr("Beam Model"), this);
   beamDock->setObjectName(QStringLiteral("beamModelDock"));
-  beamDock->setWidget(beamHost);
+  beamDock->setWidget(beamDock_);
   beamDock->toggleViewAction()->setShortcut(QKeySequence(tr("Ctrl+Shift+B")));
 
   // One column right of the grid: the beam view (the map summary tabbed behind it) above the
@@ -142,39 +88,16 @@ void MainWindow::showCurrentScan() {
   scanShownPose_ = pose;
   const std::size_t scan = timeline_->currentScan();
   view_->setRobotAt(run, pose, scan);
-  const std::vector<Reading>& readings = run->scans[scan].readings;
-  // The user's sonar while this scan has a reading of it, else the first reading with an echo.
-  const Reading* shown = nullptr;
-  for (const Reading& r : readings)
-    if (chosenSonar_ == static_cast<std::size_t>(r.sonar)) shown = &r;
-  for (const Reading& r : readings)
-    if (!shown && r.echo()) shown = &r;
-  if (!shown && !readings.empty()) shown = &readings.front();
-
-  const QSignalBlocker block(readingChooser_);
-  readingChooser_->clear();
-  for (const Reading& r : readings) {
-    readingChooser_->addItem(r.echo() ? tr("sonar %1: %2 m").arg(r.sonar).arg(r.range, 0, 'f', 2)
-                                      : tr("sonar %1: no echo").arg(r.sonar),
-                             QVariant::fromValue(static_cast<std::size_t>(r.sonar)));
-    if (&r == shown) readingChooser_->setCurrentIndex(readingChooser_->count() - 1);
-  }
-  readingChooser_->setEnabled(!readings.empty());
-  beamSonar_ = shown ? std::optional<std::size_t>(shown->sonar) : std::nullopt;
-  view_->setHighlightedSonar(beamSonar_);
-  // No echo: the model's picture of a reading at the maximum range.
-  if (shown) beamView_->setRange(shown->echo() ? shown->range : run->ring.maxRange);
+  view_->setHighlightedSonar(
+      beamDock_->showReadings(run->scans[scan].readings, run->ring.maxRange));
 }
 
 bool MainWindow::chooseBeamSonar(std::size_t sonar) {
   if (!document_->dataset()) return false;
-  for (const Reading& r : document_->dataset()->scans[timeline_->currentScan()].readings)
-    if (r.sonar == sonar) {
-      chosenSonar_ = sonar;
-      showCurrentScan();
-      return true;
-    }
-  return false;
+  if (!beamDock_->choose(document_->dataset()->scans[timeline_->currentScan()].readings, sonar))
+    return false;
+  showCurrentScan();
+  return true;
 }
 
 }  // namespace sg::app

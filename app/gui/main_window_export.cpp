@@ -43,7 +43,7 @@ bool MainWindow::mapComplete() {
     waitForMap(10 * 60 * 1000);
     QApplication::restoreOverrideCursor();
   }
-  if (view_->map() && view_->map() == fullMap_) return true;
+  if (view_->map() && view_->map() == remap_->lastMap()) return true;
   reportError(tr("Export"),
               tr("The map of the current settings is not complete (only its preview is shown, or "
                  "mapping failed). Export again once the status bar says \"re-mapped\"."),
@@ -97,8 +97,8 @@ bool MainWindow::exportMapPngTo(const QString& path) {
     PngOptions o;
     o.legend = true;
     o.unknown = kUnknownColour;  // never-observed cells as the view draws them
-    o.scale = std::max(1, static_cast<int>(std::lround(0.2 / fullMap_->spec.cellSize)));
-    writeMapPng(*fullMap_, QDir::toNativeSeparators(path).toStdString(), o);
+    o.scale = std::max(1, static_cast<int>(std::lround(0.2 / remap_->lastMap()->spec.cellSize)));
+    writeMapPng(*remap_->lastMap(), QDir::toNativeSeparators(path).toStdString(), o);
     return true;
   } catch (const std::exception& e) {
     return reportError(tr("Export failed"), QString::fromStdString(e.what()), false);

@@ -13,6 +13,7 @@
 #include <QSettings>
 #include <QStatusBar>
 
+#include "beam_dock.h"
 #include "beam_model_view.h"
 #include "csv_import_dialog.h"
 #include "dataset_manifest.h"
@@ -22,6 +23,7 @@
 #include "remap_controller.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/reference/read_reference.h"
+#include "status_report.h"
 #include "timeline.h"
 
 namespace sg::app {
@@ -64,13 +66,8 @@ void MainWindow::loadLog(const QString& path, const LogOptions& options, bool qu
                           ? pendingProject_->state->cellSize
                           : document_->cellSize();
   loader_->start(path, options, settings.pose, cell, quiet);
-  loadBar_->setValue(0);
-  const QString name = loadBar_->fontMetrics().elidedText(QFileInfo(path).fileName(),
-                                                          Qt::ElideMiddle, loadBar_->width() / 2);
-  loadBar_->setFormat(tr("Loading %1: %p%").arg(name));
-  loadBar_->setVisible(true);
-  loadCancelButton_->setVisible(true);
-  cancelLoadAction_->setEnabled(true);
+  status_->loadStarted(QFileInfo(path).fileName());
+  actions_.cancelLoad->setEnabled(true);
 }
 
 void MainWindow::cancelLoad() {
@@ -94,9 +91,8 @@ bool MainWindow::waitForLoad(int timeoutMs) {
 }
 
 void MainWindow::hideLoadProgress() {
-  loadBar_->setVisible(false);
-  loadCancelButton_->setVisible(false);
-  cancelLoadAction_->setEnabled(false);
+  status_->loadEnded();
+  actions_.cancelLoad->setEnabled(false);
 }
 
 void MainWindow::onLoadFailed(const QString& path, const QString& message, bool quiet) {
@@ -112,17 +108,18 @@ void MainWindow::onLoadFailed(const QString& path, const QString& message, bool 
   emit loadFailed(path, message);
 }
 
-void MainWindow::adoptLog(const QString& path, std::shared_ptr<const Dataset> dataset) {
-  adopting_ = true;
+void MainWindow::adoptLog(const QString& path, std::shared_ptr<const ScanSource> source) {
+  // The document takes the new log first: until remap_->start() below, the controller still holds
+  // the previous one, and the settings and cell size that change meanwhile map nothing
+  // (onSettingsChanged, onCellSizeChanged).
+  document_->setLog(path, std::move(source));
   if (pendingProject_ && pendingProject_->logPath == path) {
     const PendingProject project = *std::exchange(pendingProject_, std::nullopt);
-    document_->restore(*project.state, project.modified);
+    document_->restore(*project.state, project.modified);  // the project names this log
     document_->setProjectPath(project.path);
-    document_->setLog(path, std::move(dataset));
     pendingView_ = project.state->view;
   } else {
     pendingProject_.reset();
-    document_->setLog(path, std::move(dataset));
     // The log's own reference map: the one its dataset's manifest declares (datasets/*/
     // dataset.json, docs/formats.md), else one beside it with its name (room.sglog + room.json).
     QString manifestError;
@@ -168,7 +165,6 @@ void MainWindow::adoptLog(const QString& path, std::shared_ptr<const Dataset> da
     s.pose = PoseSource::Odometry;
     document_->adjustMapperSettings(s);
   }
-  adopting_ = false;
   std::vector<double> times;
   double end = 0.0;
   times.reserve(run.scans.size());
@@ -181,13 +177,12 @@ void MainWindow::adoptLog(const QString& path, std::shared_ptr<const Dataset> da
     const QSignalBlocker block(timeline_);
     timeline_->setScanTimes(std::move(times), end);
   }
-  hoverLabel_->setText(tr("Hover over the grid to read a cell; drag to pan, wheel to zoom."));
-  chosenSonar_.reset();
-  beamView_->setMaxRange(run.ring.maxRange);
+  status_->setHint(tr("Hover over the grid to read a cell; drag to pan, wheel to zoom."));
+  beamDock_->startLog(run.ring.maxRange);
   scanShownPose_.reset();  // a new log: its scan must be drawn
   onReferenceChanged();    // the first view fits the robot's path and the reference
   showSettings();
-  remap_->start(document_->dataset(), document_->cellSize(), document_->mapperSettings(),
+  remap_->start(document_->source(), document_->cellSize(), document_->mapperSettings(),
                 timeline_->time());
 }
 
@@ -203,9 +198,8 @@ bool MainWindow::openReference(const QString& path, bool quiet) {
 
 void MainWindow::closeLog() {
   cancelLoad();
-  document_->setLog({}, nullptr);
-  readingChooser_->clear();
-  beamSonar_.reset();
+  document_->setLog({}, std::shared_ptr<const ScanSource>());
+  beamDock_->clearReadings();
   view_->setHighlightedSonar(std::nullopt);
   view_->setRobotAt(nullptr, document_->mapperSettings().pose, 0);
   updateSummary();

@@ -58,56 +58,56 @@ ParameterSet carryParameters(const std::string& model, const std::string& rule,
 }  // namespace
 
 void MainWindow::createActions() {
-  openAction_ = new QAction(tr("&Open Log…"), this);
-  openAction_->setShortcut(QKeySequence::Open);
-  connect(openAction_, &QAction::triggered, this, &MainWindow::openLogDialog);
-  importCsvAction_ = new QAction(tr("&Import CSV…"), this);
-  connect(importCsvAction_, &QAction::triggered, this, &MainWindow::importCsvDialog);
-  cancelLoadAction_ = new QAction(tr("Cancel Loading"), this);
-  cancelLoadAction_->setShortcut(QKeySequence(Qt::Key_Escape));
-  cancelLoadAction_->setShortcutContext(Qt::WindowShortcut);
-  cancelLoadAction_->setEnabled(false);
-  connect(cancelLoadAction_, &QAction::triggered, this, &MainWindow::cancelLoad);
-  openReferenceAction_ = new QAction(tr("Open &Reference Map…"), this);
-  openReferenceAction_->setShortcut(QKeySequence(tr("Ctrl+Shift+O")));
-  connect(openReferenceAction_, &QAction::triggered, this, &MainWindow::openReferenceDialog);
-  exportViewPngAction_ = new QAction(tr("Export View as &PNG…"), this);
-  exportViewPngAction_->setShortcut(QKeySequence(tr("Ctrl+E")));
-  connect(exportViewPngAction_, &QAction::triggered, this, &MainWindow::exportViewPng);
-  exportViewSvgAction_ = new QAction(tr("Export View as &SVG…"), this);
-  exportViewSvgAction_->setShortcut(QKeySequence(tr("Ctrl+Shift+E")));
-  connect(exportViewSvgAction_, &QAction::triggered, this, &MainWindow::exportViewSvg);
-  exportMapPngAction_ = new QAction(tr("Export &Map as PNG…"), this);
-  connect(exportMapPngAction_, &QAction::triggered, this, &MainWindow::exportMapPng);
-  exportRosAction_ = new QAction(tr("Export Map as &ROS map_server…"), this);
-  connect(exportRosAction_, &QAction::triggered, this, &MainWindow::exportRosMap);
+  actions_.open = new QAction(tr("&Open Log…"), this);
+  actions_.open->setShortcut(QKeySequence::Open);
+  connect(actions_.open, &QAction::triggered, this, &MainWindow::openLogDialog);
+  actions_.importCsv = new QAction(tr("&Import CSV…"), this);
+  connect(actions_.importCsv, &QAction::triggered, this, &MainWindow::importCsvDialog);
+  actions_.cancelLoad = new QAction(tr("Cancel Loading"), this);
+  actions_.cancelLoad->setShortcut(QKeySequence(Qt::Key_Escape));
+  actions_.cancelLoad->setShortcutContext(Qt::WindowShortcut);
+  actions_.cancelLoad->setEnabled(false);
+  connect(actions_.cancelLoad, &QAction::triggered, this, &MainWindow::cancelLoad);
+  actions_.openReference = new QAction(tr("Open &Reference Map…"), this);
+  actions_.openReference->setShortcut(QKeySequence(tr("Ctrl+Shift+O")));
+  connect(actions_.openReference, &QAction::triggered, this, &MainWindow::openReferenceDialog);
+  actions_.exportViewPng = new QAction(tr("Export View as &PNG…"), this);
+  actions_.exportViewPng->setShortcut(QKeySequence(tr("Ctrl+E")));
+  connect(actions_.exportViewPng, &QAction::triggered, this, &MainWindow::exportViewPng);
+  actions_.exportViewSvg = new QAction(tr("Export View as &SVG…"), this);
+  actions_.exportViewSvg->setShortcut(QKeySequence(tr("Ctrl+Shift+E")));
+  connect(actions_.exportViewSvg, &QAction::triggered, this, &MainWindow::exportViewSvg);
+  actions_.exportMapPng = new QAction(tr("Export &Map as PNG…"), this);
+  connect(actions_.exportMapPng, &QAction::triggered, this, &MainWindow::exportMapPng);
+  actions_.exportRos = new QAction(tr("Export Map as &ROS map_server…"), this);
+  connect(actions_.exportRos, &QAction::triggered, this, &MainWindow::exportRosMap);
 
-  openProjectAction_ = new QAction(tr("Open &Project…"), this);
-  connect(openProjectAction_, &QAction::triggered, this, &MainWindow::openProjectDialog);
-  saveProjectAction_ = new QAction(tr("&Save Project"), this);
-  saveProjectAction_->setShortcut(QKeySequence::Save);
-  connect(saveProjectAction_, &QAction::triggered, this, &MainWindow::saveProject);
-  saveProjectAsAction_ = new QAction(tr("Save Project &As…"), this);
-  saveProjectAsAction_->setShortcut(QKeySequence(tr("Ctrl+Shift+S")));
-  connect(saveProjectAsAction_, &QAction::triggered, this, [this] {
+  actions_.openProject = new QAction(tr("Open &Project…"), this);
+  connect(actions_.openProject, &QAction::triggered, this, &MainWindow::openProjectDialog);
+  actions_.saveProject = new QAction(tr("&Save Project"), this);
+  actions_.saveProject->setShortcut(QKeySequence::Save);
+  connect(actions_.saveProject, &QAction::triggered, this, &MainWindow::saveProject);
+  actions_.saveProjectAs = new QAction(tr("Save Project &As…"), this);
+  actions_.saveProjectAs->setShortcut(QKeySequence(tr("Ctrl+Shift+S")));
+  connect(actions_.saveProjectAs, &QAction::triggered, this, [this] {
     const QString path = saveFileName(tr("Save Project As"), tr("SonarGrid projects (*.sgproj)"),
                                       QStringLiteral(".sgproj"));
     if (!path.isEmpty()) saveProjectAs(path);
   });
-  undoAction_ = document_->undoStack()->createUndoAction(this, tr("&Undo"));
-  undoAction_->setShortcut(QKeySequence::Undo);
-  redoAction_ = document_->undoStack()->createRedoAction(this, tr("&Redo"));
+  actions_.undo = document_->undoStack()->createUndoAction(this, tr("&Undo"));
+  actions_.undo->setShortcut(QKeySequence::Undo);
+  actions_.redo = document_->undoStack()->createRedoAction(this, tr("&Redo"));
   // Redo's platform keys (Ctrl+Shift+Z on X11) and Ctrl+Y, which the user guide names.
   QList<QKeySequence> redoKeys = QKeySequence::keyBindings(QKeySequence::Redo);
   if (!redoKeys.contains(QKeySequence(Qt::CTRL | Qt::Key_Y)))
     redoKeys << QKeySequence(Qt::CTRL | Qt::Key_Y);
-  redoAction_->setShortcuts(redoKeys);
-  cellSizeAction_ = new QAction(tr("&Cell Size…"), this);
-  connect(cellSizeAction_, &QAction::triggered, this, &MainWindow::askCellSize);
+  actions_.redo->setShortcuts(redoKeys);
+  actions_.cellSize = new QAction(tr("&Cell Size…"), this);
+  connect(actions_.cellSize, &QAction::triggered, this, &MainWindow::askCellSize);
 
-  fitAction_ = new QAction(tr("&Fit to Map"), this);
-  fitAction_->setShortcut(QKeySequence(tr("Ctrl+0")));
-  connect(fitAction_, &QAction::triggered, view_, &ui::GridView::fitToMap);
+  actions_.fit = new QAction(tr("&Fit to Map"), this);
+  actions_.fit->setShortcut(QKeySequence(tr("Ctrl+0")));
+  connect(actions_.fit, &QAction::triggered, view_, &ui::GridView::fitToMap);
 
   const std::pair<ui::Overlay, QString> overlays[] = {
       {ui::Overlay::Reference, tr("&Reference Map")},
@@ -127,41 +127,41 @@ void MainWindow::createActions() {
     connect(a, &QAction::toggled, this, [this, o = overlay](bool on) {
       document_->setOverlays(document_->overlays().setFlag(o, on));
     });
-    overlayActions_ << a;
+    actions_.overlays << a;
   }
 
-  playAction_ = new QAction(tr("&Play / Pause"), this);
-  playAction_->setCheckable(true);
-  playAction_->setShortcut(QKeySequence(Qt::Key_Space));
-  stepForwardAction_ = new QAction(tr("&Next Scan"), this);
-  stepForwardAction_->setShortcut(QKeySequence(Qt::Key_Period));
-  stepBackAction_ = new QAction(tr("Pre&vious Scan"), this);
-  stepBackAction_->setShortcut(QKeySequence(Qt::Key_Comma));
+  actions_.play = new QAction(tr("&Play / Pause"), this);
+  actions_.play->setCheckable(true);
+  actions_.play->setShortcut(QKeySequence(Qt::Key_Space));
+  actions_.stepForward = new QAction(tr("&Next Scan"), this);
+  actions_.stepForward->setShortcut(QKeySequence(Qt::Key_Period));
+  actions_.stepBack = new QAction(tr("Pre&vious Scan"), this);
+  actions_.stepBack->setShortcut(QKeySequence(Qt::Key_Comma));
 }
 
 void MainWindow::createMenus() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
-  file->addAction(openAction_);
-  file->addAction(importCsvAction_);
-  file->addAction(cancelLoadAction_);
-  recentMenu_ = file->addMenu(tr("Open &Recent"));
+  file->addAction(actions_.open);
+  file->addAction(actions_.importCsv);
+  file->addAction(actions_.cancelLoad);
+  actions_.recentMenu = file->addMenu(tr("Open &Recent"));
   QAction* example = file->addAction(tr("Open &Example…"));
   connect(example, &QAction::triggered, this, &MainWindow::openExample);
-  file->addAction(openReferenceAction_);
+  file->addAction(actions_.openReference);
   file->addSeparator();
-  file->addAction(openProjectAction_);
-  file->addAction(saveProjectAction_);
-  file->addAction(saveProjectAsAction_);
+  file->addAction(actions_.openProject);
+  file->addAction(actions_.saveProject);
+  file->addAction(actions_.saveProjectAs);
   file->addSeparator();
-  file->addAction(exportViewPngAction_);
-  file->addAction(exportViewSvgAction_);
-  file->addAction(exportMapPngAction_);
-  file->addAction(exportRosAction_);
+  file->addAction(actions_.exportViewPng);
+  file->addAction(actions_.exportViewSvg);
+  file->addAction(actions_.exportMapPng);
+  file->addAction(actions_.exportRos);
   // Nothing to export before a map is shown (a log or a live robot's map).
   auto updateExports = [this] {
     const bool any = view_->map() != nullptr;
-    for (QAction* a :
-         {exportViewPngAction_, exportViewSvgAction_, exportMapPngAction_, exportRosAction_})
+    for (QAction* a : {actions_.exportViewPng, actions_.exportViewSvg, actions_.exportMapPng,
+                       actions_.exportRos})
       a->setEnabled(any);
   };
   updateExports();
@@ -179,33 +179,33 @@ void MainWindow::createMenus() {
 
   QMenu* edit = menuBar()->addMenu(tr("&Edit"));
   edit->setObjectName(QStringLiteral("editMenu"));
-  edit->addAction(undoAction_);
-  edit->addAction(redoAction_);
+  edit->addAction(actions_.undo);
+  edit->addAction(actions_.redo);
 
   QMenu* view = menuBar()->addMenu(tr("&View"));
   view->setObjectName(QStringLiteral("viewMenu"));
-  view->addAction(fitAction_);
-  view->addAction(cellSizeAction_);
+  view->addAction(actions_.fit);
+  view->addAction(actions_.cellSize);
   view->addSeparator();
-  for (QAction* a : overlayActions_) view->addAction(a);
+  for (QAction* a : actions_.overlays) view->addAction(a);
   view->addSeparator();
   for (QDockWidget* dock : findChildren<QDockWidget*>()) view->addAction(dock->toggleViewAction());
 
   QMenu* time = menuBar()->addMenu(tr("&Timeline"));
-  time->addAction(playAction_);
-  time->addAction(stepForwardAction_);
-  time->addAction(stepBackAction_);
+  time->addAction(actions_.play);
+  time->addAction(actions_.stepForward);
+  time->addAction(actions_.stepBack);
 
   QMenu* mapping = menuBar()->addMenu(tr("&Mapping"));
-  modelMenu_ = mapping->addMenu(tr("Sensor &Model"));
-  ruleMenu_ = mapping->addMenu(tr("Update &Rule"));
+  actions_.modelMenu = mapping->addMenu(tr("Sensor &Model"));
+  actions_.ruleMenu = mapping->addMenu(tr("Update &Rule"));
   QMenu* pose = mapping->addMenu(tr("&Pose"));
-  poseGroup_ = new QActionGroup(this);
+  actions_.poseGroup = new QActionGroup(this);
   for (PoseSource p : {PoseSource::Odometry, PoseSource::Truth}) {
     QAction* a = pose->addAction(p == PoseSource::Truth ? tr("&True pose") : tr("&Odometry"));
     a->setCheckable(true);
     a->setData(poseName(p));
-    poseGroup_->addAction(a);
+    actions_.poseGroup->addAction(a);
     connect(a, &QAction::triggered, this, [this, p] { choosePose(p); });
   }
   rebuildMappingMenu();
@@ -234,29 +234,29 @@ void MainWindow::createMenus() {
   connect(help->addAction(tr("&About SonarGrid")), &QAction::triggered, this,
           [this] { showAbout(this); });
   // Shortcuts of hidden docks' actions still work when they live on the window.
-  addActions({playAction_, stepForwardAction_, stepBackAction_});
+  addActions({actions_.play, actions_.stepForward, actions_.stepBack});
 }
 
 void MainWindow::rebuildMappingMenu() {
-  menuSettings_ = document_->mapperSettings();
+  actions_.menuSettings = document_->mapperSettings();
   const MapperSettings& settings = document_->mapperSettings();
-  modelMenu_->clear();
-  ruleMenu_->clear();
+  actions_.modelMenu->clear();
+  actions_.ruleMenu->clear();
   // The previous groups go with their actions (clear() deletes only the actions).
-  qDeleteAll(modelMenu_->findChildren<QActionGroup*>(Qt::FindDirectChildrenOnly));
-  qDeleteAll(ruleMenu_->findChildren<QActionGroup*>(Qt::FindDirectChildrenOnly));
-  auto* models = new QActionGroup(modelMenu_);
+  qDeleteAll(actions_.modelMenu->findChildren<QActionGroup*>(Qt::FindDirectChildrenOnly));
+  qDeleteAll(actions_.ruleMenu->findChildren<QActionGroup*>(Qt::FindDirectChildrenOnly));
+  auto* models = new QActionGroup(actions_.modelMenu);
   for (const std::string& name : sensorModelNames()) {
-    QAction* a = modelMenu_->addAction(QString::fromStdString(sensorModelInfo(name).title));
+    QAction* a = actions_.modelMenu->addAction(QString::fromStdString(sensorModelInfo(name).title));
     a->setCheckable(true);
     a->setChecked(name == settings.model);
     models->addAction(a);
     connect(a, &QAction::triggered, this,
             [this, n = QString::fromStdString(name)] { chooseModel(n); });
   }
-  auto* rules = new QActionGroup(ruleMenu_);
+  auto* rules = new QActionGroup(actions_.ruleMenu);
   for (const std::string& name : updateRuleNames()) {
-    QAction* a = ruleMenu_->addAction(QString::fromStdString(updateRuleInfo(name).title));
+    QAction* a = actions_.ruleMenu->addAction(QString::fromStdString(updateRuleInfo(name).title));
     a->setCheckable(true);
     a->setChecked(name == settings.rule);
     const Compatibility c = compatibility(settings.model, name);
@@ -266,8 +266,9 @@ void MainWindow::rebuildMappingMenu() {
     connect(a, &QAction::triggered, this,
             [this, n = QString::fromStdString(name)] { chooseRule(n); });
   }
-  ruleMenu_->setToolTipsVisible(true);
-  for (QAction* a : poseGroup_->actions()) a->setChecked(a->data() == poseName(settings.pose));
+  actions_.ruleMenu->setToolTipsVisible(true);
+  for (QAction* a : actions_.poseGroup->actions())
+    a->setChecked(a->data() == poseName(settings.pose));
 }
 
 void MainWindow::chooseModel(const QString& model) {
@@ -302,14 +303,14 @@ void MainWindow::rememberRecent(const QString& path) {
 }
 
 void MainWindow::rebuildRecentMenu() {
-  if (!recentMenu_) return;
-  recentMenu_->clear();
+  if (!actions_.recentMenu) return;
+  actions_.recentMenu->clear();
   for (int i = 0; i < recent_.size(); ++i) {
     const QString path = recent_[i];
-    QAction* a = recentMenu_->addAction(QStringLiteral("&%1 %2").arg(i + 1).arg(path));
+    QAction* a = actions_.recentMenu->addAction(QStringLiteral("&%1 %2").arg(i + 1).arg(path));
     connect(a, &QAction::triggered, this, [this, path] { openAny(path); });
   }
-  recentMenu_->setEnabled(!recent_.isEmpty());
+  actions_.recentMenu->setEnabled(!recent_.isEmpty());
 }
 
 void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
