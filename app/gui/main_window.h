@@ -6,7 +6,6 @@
 // evaluates a model: the core does (DESIGN.md, "Data flow"). Its parts live by responsibility in
 // main_window_*.cpp (menus, docks, projects, exports), log_loader.cpp and help_dialogs.cpp.
 
-#include <QElapsedTimer>
 #include <QMainWindow>
 #include <QStringList>
 #include <memory>
@@ -22,14 +21,8 @@
 #include "sonargrid/reference/reference_map.h"
 
 class QAction;
-class QDoubleSpinBox;
 class QActionGroup;
-class QComboBox;
-class QLabel;
 class QMenu;
-class QProgressBar;
-class QPushButton;
-class QThread;
 class QTimer;
 
 namespace sg::ui {
