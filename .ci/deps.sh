@@ -6,6 +6,7 @@ set -euo pipefail
 
 packages=(
   g++ cmake ninja-build                     # toolchain
+  lld                                       # LLVM's linker: links in a fifth of ld.bfd's time
   qt6-base-dev                              # Qt 6 Core/Gui/Widgets/Test/OpenGL/Network
   qt6-serialport-dev                        # Qt 6 SerialPort (the robot link's serial transport)
   libeigen3-dev                             # poses and geometry
