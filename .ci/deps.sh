@@ -12,6 +12,8 @@ packages=(
   libeigen3-dev                             # poses and geometry
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev  # distance transform, PNG
   nlohmann-json3-dev                        # JSON for the CLI and reference maps
+  libbz2-dev liblz4-dev libzstd-dev         # ROS bags' chunk compressions (core/sonargrid/io/bag)
+  libsqlite3-dev                            # rosbag2's SQLite storage
   libbenchmark-dev                          # Google Benchmark (tests/bench)
   libnlopt-cxx-dev                          # NLopt, the optimisers of sonargrid-cli optimize
   libqt6opengl6-dev                         # Qt 6 OpenGL / OpenGLWidgets (the grid view)
