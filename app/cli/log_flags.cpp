@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The log-reading flags every command that reads a log shares (docs/cli.md, "Reading logs"):
-// --format, --lenient, --robot, --columns, --poses.
+// --format, --lenient, --robot, --columns, --poses, and a bag's --sonar-topic, --odom-topic and
+// --truth-topic.
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
@@ -16,7 +18,8 @@ LogOptions parseLogOptions(Arguments& args) {
   LogOptions o;
   if (const auto format = args.value("--format")) {
     if (!parseLogFormat(*format, o.format)) {
-      throw UsageError("--format takes auto, sglog, carmen, player or csv, got '" + *format + "'");
+      throw UsageError("--format takes auto, sglog, carmen, player, csv or bag, got '" + *format +
+                       "'");
     }
   }
   o.lenient = args.flag("--lenient");
@@ -45,6 +48,23 @@ LogOptions parseLogOptions(Arguments& args) {
     }
   }
   if (const auto poses = args.value("--poses")) o.posesPath = *poses;
+  // Repeated, or a comma-separated list: one topic per transducer, or one for them all.
+  for (const std::string& v : args.values("--sonar-topic")) {
+    std::size_t start = 0;
+    while (start <= v.size()) {
+      const std::size_t stop = std::min(v.find(',', start), v.size());
+      if (stop > start) o.topics.sonar.push_back(v.substr(start, stop - start));
+      start = stop + 1;
+    }
+  }
+  if (const auto odom = args.value("--odom-topic")) o.topics.odometry = *odom;
+  if (const auto truth = args.value("--truth-topic")) o.topics.truth = *truth;
+  if (!o.topics.empty() && o.format != LogFormat::Auto && o.format != LogFormat::Bag) {
+    throw UsageError(
+        "--sonar-topic, --odom-topic and --truth-topic choose a bag's topics; they do "
+        "not go with --format " +
+        std::string(logFormatName(o.format)));
+  }
   const bool csvOnly = o.csv || !o.posesPath.empty();
   if (csvOnly && o.format != LogFormat::Auto && o.format != LogFormat::Csv) {
     throw UsageError("--columns and --poses describe CSV logs; they do not go with --format " +
@@ -63,6 +83,8 @@ Dataset loadLog(const std::string& path, const LogOptions& options, LoadReport* 
   } catch (const LogError& e) {
     throw InputError(e.what());
   }
+  for (const std::string& note : r.notes)
+    std::cerr << "sonargrid-cli: " << path << ": " << note << "\n";
   if (r.skippedLines != 0) {
     std::cerr << "sonargrid-cli: " << path << ": --lenient skipped " << r.skippedLines
               << (r.skippedLines == 1 ? " bad line:\n" : " bad lines:\n");

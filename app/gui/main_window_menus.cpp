@@ -334,8 +334,8 @@ void MainWindow::openLogDialog() {
   const QString dir = QSettings().value("files/lastDirectory", QDir::homePath()).toString();
   const QString path = QFileDialog::getOpenFileName(
       this, tr("Open Log"), dir,
-      tr("Sonar logs (*.sglog *.clf *.carmen *.log *.playerlog *.csv *.txt *.tsv);;"
-         "All files (*)"));
+      tr("Sonar logs (*.sglog *.clf *.carmen *.log *.playerlog *.csv *.txt *.tsv *.bag *.mcap "
+         "*.db3 metadata.yaml);;ROS bags (*.bag *.mcap *.db3 metadata.yaml);;All files (*)"));
   if (!path.isEmpty() && maybeSave()) openLog(path);
 }
 

@@ -2,6 +2,7 @@
 // The log-reading flags of sonargrid-cli (--format, --lenient, --robot, --columns, --poses) on
 // map, score and goodness, and the convert command (docs/cli.md).
 
+#include <QFile>
 #include <QJsonDocument>
 #include <QJsonObject>
 #include <QProcess>
@@ -46,6 +47,14 @@ QJsonObject jsonOf(const QByteArray& out) {
   return QJsonDocument::fromJson(out).object();
 }
 
+const QString kBags = QStringLiteral(SONARGRID_TEST_DATA) + "/bags/room/";
+const QString kRoom = QStringLiteral(SONARGRID_DATASETS) + "/room/room.sglog";
+
+QByteArray fileBytes(const QString& path) {
+  QFile f(path);
+  return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+}
+
 const QStringList kHimm{"--model", "himm", "--rule", "himm", "--json"};
 
 }  // namespace
@@ -59,6 +68,10 @@ class TstCliFormats : public QObject {
   void convertSglogToCarmenAndBack();
   void convertJson();
   void lenientReportsOnStderr();
+  void bagsMapAsTheirSglog_data();
+  void bagsMapAsTheirSglog();
+  void convertABagWritesItsLog();
+  void bagTopicFlags();
   void scoreAndGoodnessTakeTheFlags();
   void errors_data();
   void errors();
@@ -180,7 +193,7 @@ void TstCliFormats::errors_data() {
   QTest::addColumn<QString>("message");  // stderr without "sonargrid-cli: " and the newline
   const QString bad = kLogs + "bad/range.clf";
   QTest::newRow("format") << QStringList{"map", "--log", bad, "--format", "clf"}
-                          << "--format takes auto, sglog, carmen, player or csv, got 'clf'";
+                          << "--format takes auto, sglog, carmen, player, csv or bag, got 'clf'";
   QTest::newRow("strict") << QStringList{"map", "--log", bad}
                           << bad + ":3: SONAR r[1]: expected a range in metres >= 0, found 'x'";
   QTest::newRow("robot") << QStringList{"map", "--log", bad, "--robot", "pioneer"}
@@ -216,6 +229,87 @@ void TstCliFormats::errors() {
   QVERIFY2(r.code == 2, describe(all, r));
   QCOMPARE(QString::fromUtf8(r.err), "sonargrid-cli: " + message + "\n");
   QVERIFY(r.out.isEmpty());
+}
+
+void TstCliFormats::bagsMapAsTheirSglog_data() {
+  QTest::addColumn<QString>("bag");
+  // datasets/room/room.sglog converted by python3-rosbag, @mcap/core and SQLite
+  // (tests/data/bags/room/README.md).
+  for (const char* b : {"room-none.bag", "room-bz2.bag", "room-lz4.bag", "room-zstd.mcap",
+                        "room-lz4.mcap", "room-sqlite"}) {
+    QTest::newRow(b) << QString::fromLatin1(b);
+  }
+}
+
+void TstCliFormats::bagsMapAsTheirSglog() {
+  // The same JSON (elapsed_ms aside: grid, cells, the histogram of levels) and the same PNG bytes
+  // as the .sglog the bag was made from.
+  QFETCH(QString, bag);
+  QTemporaryDir dir;
+  const QStringList common{"--model", "hpf", "--rule", "bayes", "--pose", "truth", "--json"};
+  const QStringList a =
+      QStringList{"map", "--log", kBags + bag, "--png", dir.filePath("a.png")} + common;
+  const QStringList b = QStringList{"map", "--log", kRoom, "--png", dir.filePath("b.png")} + common;
+  const Run ra = runCli(a);
+  const Run rb = runCli(b);
+  QVERIFY2(ra.code == 0, describe(a, ra));
+  QVERIFY2(rb.code == 0, describe(b, rb));
+  // What was read is said on stderr.
+  QVERIFY2(ra.err.contains("sonar: /sonar (sensor_msgs/Range, 11888 messages), picked"),
+           describe(a, ra));
+  QJsonObject ja = jsonOf(ra.out), jb = jsonOf(rb.out);
+  ja.remove("elapsed_ms");
+  jb.remove("elapsed_ms");
+  QCOMPARE(ja, jb);
+  QCOMPARE(ja.value("readings").toInt(), 11888);
+  const QByteArray pa = fileBytes(dir.filePath("a.png"));
+  QVERIFY(!pa.isEmpty());
+  QVERIFY(pa == fileBytes(dir.filePath("b.png")));
+}
+
+void TstCliFormats::convertABagWritesItsLog() {
+  QTemporaryDir dir;
+  const QString out = dir.filePath("room.sglog");
+  const QStringList args{"convert", "--in", kBags + "room-zstd.mcap", "--out", out, "--json"};
+  const Run c = runCli(args);
+  QVERIFY2(c.code == 0, describe(args, c));
+  QCOMPARE(jsonOf(c.out).value("in_format").toString(), QStringLiteral("bag"));
+  QCOMPARE(jsonOf(c.out).value("scans").toInt(), 743);
+  const Run a = runCli(QStringList{"map", "--log", out, "--pose", "truth"} + kHimm);
+  const Run b = runCli(QStringList{"map", "--log", kRoom, "--pose", "truth"} + kHimm);
+  QJsonObject ja = jsonOf(a.out), jb = jsonOf(b.out);
+  ja.remove("elapsed_ms");
+  jb.remove("elapsed_ms");
+  QCOMPARE(ja, jb);
+}
+
+void TstCliFormats::bagTopicFlags() {
+  // --truth-topic - : no true pose, so --pose truth is refused.
+  const QStringList none{"map",           "--log",   kBags + "room-lz4.bag",
+                         "--truth-topic", "-",       "--pose",
+                         "truth",         "--model", "himm",
+                         "--rule",        "himm"};
+  const Run r = runCli(none);
+  QVERIFY2(r.code == 2, describe(none, r));
+  // An unknown topic names the bag's topics.
+  const QStringList bad{"map",          "--log",  kBags + "room-lz4.bag",
+                        "--odom-topic", "/nope",  "--model",
+                        "himm",         "--rule", "himm"};
+  const Run rb = runCli(bad);
+  QVERIFY2(rb.code == 2 && rb.err.contains("the odometry topic /nope is not in the bag") &&
+               rb.err.contains("/odom (nav_msgs/Odometry)"),
+           describe(bad, rb));
+  // The RosAria bag needs the robot; with it, it maps.
+  const QStringList aria{"map",  "--log", kBags + "rosaria-room.bag", "--model", "himm", "--rule",
+                         "himm", "--json"};
+  const Run ra = runCli(aria);
+  QVERIFY2(ra.code == 2 && ra.err.contains("--robot"), describe(aria, ra));
+  const Run rb2 = runCli(aria + QStringList{"--robot", "p3dx"});
+  QVERIFY2(rb2.code == 0, describe(aria, rb2));
+  // A topic flag with a text format is a usage error.
+  const QStringList mixed{"map",    "--log",   kRoom,  "--format", "sglog", "--sonar-topic",
+                          "/sonar", "--model", "himm", "--rule",   "himm"};
+  QCOMPARE(runCli(mixed).code, 2);
 }
 
 QTEST_GUILESS_MAIN(TstCliFormats)

@@ -153,6 +153,25 @@ class TestMainWindowLoad : public QObject {
     QCOMPARE(window.dataset()->scans.size(), std::size_t(743));
   }
 
+  void aBagOpensAndMapsAsItsSglog() {
+    // datasets/room/room.sglog written as MCAP by npm's @mcap/core
+    // (tests/data/bags/room/README.md): File > Open reads it with the topics it picks, and the
+    // window's map is the .sglog's, bit for bit in every layer.
+    app::MainWindow window;
+    QVERIFY(openRoom(window));
+    const std::shared_ptr<const OccupancyMap> sglog = window.remapController()->lastMap();
+    QVERIFY(sglog != nullptr);
+    const QString bag = QStringLiteral(SONARGRID_TEST_DATA "/bags/room/room-zstd.mcap");
+    QVERIFY(window.openLog(bag, true) && window.waitForMap(60000));
+    QCOMPARE(window.logPath(), bag);
+    const std::shared_ptr<const OccupancyMap> map = window.remapController()->lastMap();
+    QVERIFY(map != nullptr && map != sglog);
+    QCOMPARE(window.dataset()->readingCount(), std::size_t(11888));
+    QVERIFY(map->spec == sglog->spec && map->level == sglog->level &&
+            map->observed == sglog->observed && map->probability.identical(sglog->probability) &&
+            map->native.identical(sglog->native) && map->evidence.identical(sglog->evidence));
+  }
+
   void csvFileOpensTheImportDialog() {
     const QString csv = QStringLiteral(SONARGRID_TEST_DATA "/logs/mm_ddeg.csv");
     const QString geometry = QStringLiteral(SONARGRID_TEST_DATA "/logs/ring4_mm.geom");

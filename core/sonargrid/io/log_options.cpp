@@ -7,12 +7,13 @@
 namespace sg {
 namespace {
 
-constexpr std::array<std::pair<LogFormat, std::string_view>, 5> kNames{{
+constexpr std::array<std::pair<LogFormat, std::string_view>, 6> kNames{{
     {LogFormat::Auto, "auto"},
     {LogFormat::Sglog, "sglog"},
     {LogFormat::Carmen, "carmen"},
     {LogFormat::Player, "player"},
     {LogFormat::Csv, "csv"},
+    {LogFormat::Bag, "bag"},
 }};
 
 // Distinct skip reasons (and ignored message types) kept; fields like "SONAR r[N]" could otherwise

@@ -19,10 +19,11 @@
 
 namespace sg {
 
-enum class LogFormat { Auto, Sglog, Carmen, Player, Csv };
+enum class LogFormat { Auto, Sglog, Carmen, Player, Csv, Bag };
 
 std::string_view logFormatName(LogFormat f);
-// "auto", "sglog", "carmen", "player" or "csv"; false for anything else.
+// "auto", "sglog", "carmen", "player", "csv" or "bag" (ROS 1 bag, MCAP or rosbag2 SQLite); false
+// for anything else.
 bool parseLogFormat(std::string_view name, LogFormat& out);
 
 // Thrown when LogOptions::cancel became true during a load; nothing of the load is returned.
@@ -30,6 +31,16 @@ class LoadCancelled : public std::runtime_error {
  public:
   explicit LoadCancelled(const std::string& file)
       : std::runtime_error(file + ": loading cancelled") {}
+};
+
+// Which topics of a ROS bag make the log (docs/formats.md, "ROS bags"); an empty field is chosen
+// from the bag's topics (bag_log.h, inspectBag).
+struct BagTopics {
+  std::vector<std::string> sonar;  // sensor_msgs/Range topics, or one point cloud topic
+  std::string odometry;            // nav_msgs/Odometry; "/tf" for tf's odom -> robot transforms
+  std::string truth;               // geometry_msgs/PoseStamped or nav_msgs/Odometry; "-" for none
+  bool empty() const { return sonar.empty() && odometry.empty() && truth.empty(); }
+  bool operator==(const BagTopics&) const = default;
 };
 
 struct LogOptions {
@@ -43,6 +54,8 @@ struct LogOptions {
   std::optional<CsvLayout> csv;
   // CSV only: a second file with the poses, joined to the readings on time.
   std::string posesPath;
+  // ROS bags: the topics to read (empty: the bag's obvious ones, reported in LoadReport::notes).
+  BagTopics topics;
 
   // Called after each block read (bytes read so far, file size or 0 when unknown), from the
   // loading thread.
@@ -64,6 +77,7 @@ struct LoadReport {
   std::size_t skippedLines = 0;
   std::vector<SkipReason> skipped;                                   // in order of first sight
   std::vector<std::pair<std::string, std::size_t>> ignoredMessages;  // type, count
+  std::vector<std::string> notes;  // what a reader chose or left out (a bag's topics, ...)
 
   void skip(const LogError& e);
   void ignore(std::string_view messageType);

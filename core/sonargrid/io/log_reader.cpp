@@ -4,6 +4,9 @@
 #include <array>
 #include <vector>
 
+#include "sonargrid/io/bag/bag.h"
+#include "sonargrid/io/bag/bag_log.h"
+
 #include "sonargrid/io/carmen.h"
 #include "sonargrid/io/csv_log.h"
 #include "sonargrid/io/player.h"
@@ -45,6 +48,7 @@ Dataset dispatch(LogFormat format, text::ByteSource& source, const std::string& 
       return readPlayer(source, name, options, report);
     case LogFormat::Csv:
     case LogFormat::Auto:
+    case LogFormat::Bag:  // read before the text source is opened (readLog, parseLog)
       break;
   }
   return readCsvLog(source, name, options, report);
@@ -81,6 +85,7 @@ Dataset load(text::ByteSource& source, std::string_view head, const std::string&
 }  // namespace
 
 LogFormat detectLogFormat(std::string_view head) {
+  if (bag::detectContainer(head) != bag::Container::Unknown) return LogFormat::Bag;
   constexpr std::string_view kBom = "\xEF\xBB\xBF";
   if (head.substr(0, kBom.size()) == kBom) head.remove_prefix(kBom.size());
   std::vector<std::string_view> fields;
@@ -127,7 +132,26 @@ LogFormat detectLogFormat(std::string_view head) {
   return csvLike ? LogFormat::Csv : LogFormat::Auto;
 }
 
+namespace {
+
+// A bag is binary (or a rosbag2 folder, or its metadata.yaml): it is read by bag_log.h, not
+// through the text readers.
+bool readsAsBag(const std::string& path, const LogOptions& options) {
+  if (options.format == LogFormat::Bag) return true;
+  if (options.format != LogFormat::Auto) return false;
+  // A folder is a bag when it holds rosbag2's files; any other folder fails as a folder does.
+  return bag::isBag(path);
+}
+
+}  // namespace
+
 Dataset readLog(const std::string& path, const LogOptions& options, LoadReport* report) {
+  if (readsAsBag(path, options)) {
+    LoadReport local;
+    LoadReport& r = report != nullptr ? *report : local;
+    r = LoadReport{};
+    return bag::readBag(path, options, r);
+  }
   text::FileSource source(path);
   std::string head;
   if (options.format == LogFormat::Auto) {
@@ -150,6 +174,14 @@ std::shared_ptr<ScanSource> openLog(const std::string& path, const LogOptions& o
 
 Dataset parseLog(std::string_view bytes, const std::string& displayName, const LogOptions& options,
                  LoadReport* report) {
+  if (options.format == LogFormat::Bag ||
+      (options.format == LogFormat::Auto &&
+       bag::detectContainer(bytes.substr(0, 16)) != bag::Container::Unknown)) {
+    LoadReport local;
+    LoadReport& r = report != nullptr ? *report : local;
+    r = LoadReport{};
+    return bag::readBagBytes(bytes, displayName, options, r);
+  }
   text::MemorySource source(bytes);
   return load(source, bytes.substr(0, kDetectBytes), displayName, options, report);
 }
