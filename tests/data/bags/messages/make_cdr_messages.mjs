@@ -6,9 +6,10 @@
 // - *.cdr-be.bin: @foxglove/cdr's CdrWriter with kind CDR_BE, written field by field in the
 //   order of the same definitions (Range and Odometry).
 //
-//   cp tests/data/bags/messages/package.json /tmp/sg-npm-msgs/
-//   npm install --prefix /tmp/sg-npm-msgs
-//   node tests/data/bags/messages/make_cdr_messages.mjs /tmp/sg-npm-msgs
+//   NPM_DIR=$(mktemp -d)
+//   cp tests/data/bags/messages/package.json "$NPM_DIR"/
+//   npm install --prefix "$NPM_DIR"
+//   node tests/data/bags/messages/make_cdr_messages.mjs "$NPM_DIR"
 //
 // The values are those of make_ros1_messages.py (ROS 2 headers have no seq).
 import { createRequire } from "node:module";
@@ -16,7 +17,11 @@ import { writeFileSync } from "node:fs";
 import { dirname, join, resolve } from "node:path";
 import { fileURLToPath } from "node:url";
 
-const prefix = resolve(process.argv[2] ?? "/tmp/sg-npm-msgs");
+if (!process.argv[2]) {
+  console.error("usage: node make_cdr_messages.mjs NPM_PREFIX (the folder npm installed into)");
+  process.exit(2);
+}
+const prefix = resolve(process.argv[2]);
 const require = createRequire(join(prefix, "node_modules", "package.json"));
 const { parse } = require("@foxglove/rosmsg");
 const { MessageWriter } = require("@foxglove/rosmsg2-serialization");

@@ -4,9 +4,9 @@
 // MessageWriter, and rosbag2 SQLite storages (.db3) written by SQLite itself (better-sqlite3)
 // with the tables rosbag2 creates. The exact package versions are in package.json here.
 //
-//   mkdir -p /tmp/sg-npm && cp tests/data/bags/ros2/package.json /tmp/sg-npm/
-//   npm install --prefix /tmp/sg-npm
-//   node tests/data/bags/ros2/make_small_bags.mjs /tmp/sg-npm/node_modules
+//   NPM_DIR=$(mktemp -d) && cp tests/data/bags/ros2/package.json "$NPM_DIR"/
+//   npm install --prefix "$NPM_DIR"
+//   node tests/data/bags/ros2/make_small_bags.mjs "$NPM_DIR"/node_modules
 //
 // The output is deterministic: running it again gives the same bytes. It prints each file's
 // layout (chunks and the messages in them), which the tests' comments quote.
