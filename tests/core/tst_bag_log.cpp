@@ -10,6 +10,7 @@
 #include <QTest>
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <string>
 
@@ -47,6 +48,15 @@ OccupancyMap mapOf(const Dataset& d, const std::string& model, const std::string
   Mapper m(d.ring, d.fittingGrid(pose, 0.05), s);
   m.mapDataset(d);
   return m.snapshot();
+}
+
+// The .sglog's map of a pair, made once for every bag that is compared with it.
+const OccupancyMap& sglogMap(const std::string& model, const std::string& rule, PoseSource pose) {
+  static std::map<std::string, OccupancyMap> maps;
+  const std::string key = model + "/" + rule + (pose == PoseSource::Truth ? "/truth" : "/odom");
+  auto it = maps.find(key);
+  if (it == maps.end()) it = maps.emplace(key, mapOf(sglog(), model, rule, pose)).first;
+  return it->second;
 }
 
 QByteArray readAll(const std::string& path) {
@@ -129,7 +139,12 @@ void TstBagLog::everyContainerGivesTheSglogsLog() {
 }
 
 void TstBagLog::everyContainerMapsToTheSglogsGrid_data() {
-  everyContainerGivesTheSglogsLog_data();
+  // The six bags (the folder's metadata.yaml reads the same storage as the folder).
+  QTest::addColumn<QString>("bag");
+  for (const char* b : {"room-none.bag", "room-bz2.bag", "room-lz4.bag", "room-zstd.mcap",
+                        "room-lz4.mcap", "room-sqlite"}) {
+    QTest::newRow(b) << QString::fromLatin1(b);
+  }
 }
 
 void TstBagLog::everyContainerMapsToTheSglogsGrid() {
@@ -143,7 +158,7 @@ void TstBagLog::everyContainerMapsToTheSglogsGrid() {
                             {"parameterized", "addition"}};
   for (const auto& [model, rule] : pairs) {
     for (const PoseSource pose : {PoseSource::Odometry, PoseSource::Truth}) {
-      QVERIFY2(sameLayers(mapOf(d, model, rule, pose), mapOf(sglog(), model, rule, pose)),
+      QVERIFY2(sameLayers(mapOf(d, model, rule, pose), sglogMap(model, rule, pose)),
                (std::string(model) + " x " + rule).c_str());
     }
   }
