@@ -41,6 +41,7 @@ class TstCsvLog : public QObject {
  private slots:
   void geometryFile();
   void layoutSpec();
+  void layoutSpecRoundTrips();
   void layoutErrors_data();
   void layoutErrors();
   void millimetresTenthsOfDegreeAndNoEcho();
@@ -75,6 +76,42 @@ void TstCsvLog::layoutSpec() {
   QCOMPARE(l.secondsPerTimeUnit, 1e-3);
   // 900 tenths of a degree = 90 degrees.
   QCOMPARE(sg::radians(900.0, sg::AngleUnit::TenthDegree), kPi / 2);
+}
+
+// formatCsvLayout writes every key, so that a project file holds the whole layout; parsing its
+// text gives back the same layout, field for field.
+void TstCsvLog::layoutSpecRoundTrips() {
+  const sg::CsvLayout l = sg::parseCsvLayout(
+      "time=1,x=2,y=3,theta=4,sonars=5-7,sonars=9,length=mm,angle=ddeg,noecho=5110,noecho=0,"
+      "header=1,time_unit=ms");
+  const std::string spec = sg::formatCsvLayout(l);
+  QCOMPARE(QString::fromStdString(spec),
+           QStringLiteral("time=1,x=2,y=3,theta=4,sonars=5-7,sonars=9,length=mm,range=mm,"
+                          "angle=ddeg,time_unit=ms,noecho=5110,noecho=0,header=1,pose_time=1,"
+                          "pose_x=2,pose_y=3,pose_theta=4"));
+  QVERIFY(sg::parseCsvLayout(spec) == l);
+
+  // Columns out of order, a range unit of its own, a decimal no-echo value, a delimiter, no pose
+  // columns, the pose file's columns moved, microseconds.
+  sg::CsvLayout m;
+  m.time = 2;
+  m.sonars = {3, 5, 4};
+  m.length = sg::LengthUnit::Millimetre;
+  m.range = sg::LengthUnit::Centimetre;
+  m.angle = sg::AngleUnit::Degree;
+  m.secondsPerTimeUnit = 1e-6;
+  m.noEcho = {0.1, 655.35};
+  m.delimiter = ';';
+  m.poseTime = 4;
+  m.poseX = 3;
+  m.poseY = 2;
+  m.poseTheta = 1;
+  const std::string mspec = sg::formatCsvLayout(m);
+  QCOMPARE(QString::fromStdString(mspec),
+           QStringLiteral("time=2,sonars=3,sonars=5,sonars=4,length=mm,range=cm,angle=deg,"
+                          "time_unit=us,noecho=0.1,noecho=655.35,header=0,delimiter=semicolon,"
+                          "pose_time=4,pose_x=3,pose_y=2,pose_theta=1"));
+  QVERIFY(sg::parseCsvLayout(mspec) == m);
 }
 
 void TstCsvLog::layoutErrors_data() {

@@ -132,6 +132,52 @@ CsvLayout parseCsvLayout(std::string_view spec) {
   return layout;
 }
 
+std::string formatCsvLayout(const CsvLayout& layout) {
+  std::string out;
+  auto item = [&](std::string_view key, const std::string& value) {
+    if (!out.empty()) out += ',';
+    out.append(key).append("=").append(value);
+  };
+  auto columnItem = [&](std::string_view key, std::size_t c) {
+    if (c != 0) item(key, std::to_string(c));
+  };
+  columnItem("time", layout.time);
+  columnItem("x", layout.x);
+  columnItem("y", layout.y);
+  columnItem("theta", layout.theta);
+  for (std::size_t i = 0; i < layout.sonars.size();) {
+    std::size_t j = i;
+    while (j + 1 < layout.sonars.size() && layout.sonars[j + 1] == layout.sonars[j] + 1) ++j;
+    item("sonars", j == i
+                       ? std::to_string(layout.sonars[i])
+                       : std::to_string(layout.sonars[i]) + "-" + std::to_string(layout.sonars[j]));
+    i = j + 1;
+  }
+  item("length", lengthUnitName(layout.length));
+  item("range", lengthUnitName(layout.range));
+  item("angle", layout.angle == AngleUnit::Degree        ? "deg"
+                : layout.angle == AngleUnit::TenthDegree ? "ddeg"
+                                                         : "rad");
+  item("time_unit", layout.secondsPerTimeUnit == 1e-3   ? "ms"
+                    : layout.secondsPerTimeUnit == 1e-6 ? "us"
+                                                        : "s");
+  for (const double v : layout.noEcho) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);  // shortest: reads back exactly
+    item("noecho", std::string(buf, r.ptr));
+  }
+  item("header", std::to_string(layout.headerLines));
+  if (layout.delimiter != 0)
+    item("delimiter", layout.delimiter == ','   ? "comma"
+                      : layout.delimiter == ';' ? "semicolon"
+                                                : "blank");
+  item("pose_time", std::to_string(layout.poseTime));
+  item("pose_x", std::to_string(layout.poseX));
+  item("pose_y", std::to_string(layout.poseY));
+  item("pose_theta", std::to_string(layout.poseTheta));
+  return out;
+}
+
 double radians(double value, AngleUnit unit) {
   switch (unit) {
     case AngleUnit::Degree:

@@ -48,6 +48,10 @@ struct CsvLayout {
 // std::invalid_argument naming the bad item and what was expected.
 CsvLayout parseCsvLayout(std::string_view spec);
 
+// The spec that parseCsvLayout reads back as `layout` (every key written, columns of sonars as
+// ranges where they run on: "sonars=5-20"); a project file stores a CSV log's layout this way.
+std::string formatCsvLayout(const CsvLayout& layout);
+
 double radians(double value, AngleUnit unit);
 
 }  // namespace sg
