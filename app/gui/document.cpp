@@ -36,9 +36,11 @@ void Document::setLog(const QString& path, std::shared_ptr<const Dataset> datase
   setLog(path, dataset ? std::make_shared<const ScanSource>(std::move(dataset)) : nullptr);
 }
 
-void Document::setLog(const QString& path, std::shared_ptr<const ScanSource> source) {
-  const bool changed = path != state_.logPath;
+void Document::setLog(const QString& path, std::shared_ptr<const ScanSource> source,
+                      const LogReading& reading) {
+  const bool changed = path != state_.logPath || reading != state_.logReading;
   state_.logPath = path;
+  state_.logReading = reading;
   source_ = std::move(source);
   dataset_ = source_ ? source_->view() : nullptr;
   if (changed && !projectPath_.isEmpty()) setDirty(true);

@@ -47,7 +47,10 @@ class Document : public QObject {
   const std::shared_ptr<const Dataset>& dataset() const { return dataset_; }
   // A loaded log. Marks a saved project modified (its log changed); an untitled one is not
   // (nothing of the user's is lost by not saving it).
-  void setLog(const QString& path, std::shared_ptr<const ScanSource> source);
+  // `reading`: how it was read (a CSV log's columns, a bag's topics), which a project stores.
+  void setLog(const QString& path, std::shared_ptr<const ScanSource> source,
+              const LogReading& reading = {});
+  const LogReading& logReading() const { return state_.logReading; }
   // A log in memory: its complete source.
   void setLog(const QString& path, std::shared_ptr<const Dataset> dataset);
   const QString& secondLogPath() const { return state_.secondLogPath; }

@@ -12,6 +12,7 @@ namespace sg::app {
 // notices `cancel`.
 struct LogLoader::Job {
   QString path;
+  LogReading reading;  // the options, without the hooks
   bool quiet = false;
   std::atomic<bool> cancel{false};
   std::atomic<int> lastPercent{-1};
@@ -32,6 +33,7 @@ void LogLoader::start(const QString& path, const LogOptions& options, PoseSource
   cancel();
   auto job = std::make_shared<Job>();
   job->path = path;
+  job->reading = readingOf(options);
   job->quiet = quiet;
   job_ = job;
   LogOptions o = options;
@@ -100,7 +102,7 @@ void LogLoader::finish(const std::shared_ptr<Job>& job, std::shared_ptr<const Sc
   if (!message.isEmpty())
     emit failed(job->path, message, job->quiet);
   else
-    emit loaded(job->path, std::move(source), job->quiet);
+    emit loaded(job->path, std::move(source), job->reading, job->quiet);
 }
 
 }  // namespace sg::app

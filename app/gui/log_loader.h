@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "job_queue.h"
+#include "project.h"
 #include "sonargrid/data/dataset.h"
 #include "sonargrid/engine/scan_source.h"
 #include "sonargrid/io/log_options.h"
@@ -36,8 +37,9 @@ class LogLoader : public QObject {
  signals:
   // Percent of the file's bytes read (throttled: once per whole percent).
   void progress(int percent);
-  // The log as a complete source (openLog(), io/log_reader.h).
-  void loaded(const QString& path, std::shared_ptr<const sg::ScanSource> source, bool quiet);
+  // The log as a complete source (openLog(), io/log_reader.h), and how it was read.
+  void loaded(const QString& path, std::shared_ptr<const sg::ScanSource> source,
+              const sg::app::LogReading& reading, bool quiet);
   void failed(const QString& path, const QString& message, bool quiet);
   // The worker stopped on its cancel flag while the loader still waited for it.
   void cancelled(const QString& path);

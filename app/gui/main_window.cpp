@@ -92,10 +92,11 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
     emit loadProgress(percent);
   });
   connect(loader_, &LogLoader::loaded, this,
-          [this](const QString& path, std::shared_ptr<const ScanSource> source, bool) {
+          [this](const QString& path, std::shared_ptr<const ScanSource> source,
+                 const LogReading& reading, bool) {
             hideLoadProgress();
             lastLoadSucceeded_ = true;
-            adoptLog(path, std::move(source));
+            adoptLog(path, std::move(source), reading);
             emit loaded(path);
           });
   connect(loader_, &LogLoader::failed, this, &MainWindow::onLoadFailed);

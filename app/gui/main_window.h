@@ -54,8 +54,9 @@ class MainWindow : public QMainWindow {
   // Each returns false after telling the user (a message box naming file:line) what was wrong; the
   // previous document then stays loaded. `quiet` reports on stderr instead (screenshots, tests).
   // openLog loads on a worker thread: without `quiet` it returns true once the load has started
-  // (a CSV file first asks for its columns in the CsvImportDialog; false when the user cancels
-  // it); with `quiet` it waits for the load and returns whether it succeeded.
+  // (a CSV file first asks for its columns in the CsvImportDialog, a ROS bag for its topics in the
+  // BagImportDialog; false when the user cancels it); with `quiet` it waits for the load and
+  // returns whether it succeeded (a bag then reads the topics it picks).
   bool openLog(const QString& path, bool quiet = false);
   // Starts loading `path` with `options` on a worker thread, cancelling a load still running. The
   // previous document stays shown until the new one is complete: loaded(), or loadFailed() /
@@ -67,6 +68,9 @@ class MainWindow : public QMainWindow {
   // Blocks (running the event loop) until no load is running; true when the last one loaded.
   // timeoutMs < 0 waits as long as the load takes.
   bool waitForLoad(int timeoutMs = -1);
+  // Asks for a bag's topics (BagImportDialog) and loads it; false when the user cancels or the
+  // bag cannot be inspected (the error is shown).
+  bool importBag(const QString& path);
   // Asks for a CSV file's columns (CsvImportDialog) and loads it; false when the user cancels.
   bool importCsv(const QString& path);
   const std::shared_ptr<const sg::Dataset>& dataset() const;
@@ -162,7 +166,8 @@ class MainWindow : public QMainWindow {
   void showCurrentScan();
   bool reportError(const QString& title, const QString& message, bool quiet);
   // Makes `dataset` the document's log: timeline, views, re-map (or a pending project's state).
-  void adoptLog(const QString& path, std::shared_ptr<const sg::ScanSource> source);
+  void adoptLog(const QString& path, std::shared_ptr<const sg::ScanSource> source,
+                const LogReading& reading = {});
   void onLoadFailed(const QString& path, const QString& message, bool quiet);
   void hideLoadProgress();
 

@@ -2,6 +2,7 @@
 // Opening logs and reference maps: the load on a worker (LogLoader) with its progress in the status
 // bar, and adopting a loaded log (or a project waiting for its log) as the document's.
 #include <QAction>
+#include <QApplication>
 #include <QComboBox>
 #include <QCoreApplication>
 #include <QDir>
@@ -13,6 +14,7 @@
 #include <QSettings>
 #include <QStatusBar>
 
+#include "bag_import_dialog.h"
 #include "beam_dock.h"
 #include "beam_model_view.h"
 #include "csv_import_dialog.h"
@@ -21,6 +23,7 @@
 #include "log_loader.h"
 #include "main_window.h"
 #include "remap_controller.h"
+#include "sonargrid/io/bag/bag_log.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/reference/read_reference.h"
 #include "status_report.h"
@@ -46,12 +49,29 @@ bool needsColumns(const QString& path) {
 
 bool MainWindow::openLog(const QString& path, bool quiet) {
   if (!quiet && needsColumns(path)) return importCsv(path);
+  if (!quiet && bag::isBag(QDir::toNativeSeparators(path).toStdString())) return importBag(path);
   loadLog(path, LogOptions{}, quiet);
   return !quiet || waitForLoad();
 }
 
 bool MainWindow::importCsv(const QString& path) {
   ui::CsvImportDialog dialog(path, this);
+  if (dialog.exec() != QDialog::Accepted || !dialog.options()) return false;
+  loadLog(path, *dialog.options());
+  return true;
+}
+
+bool MainWindow::importBag(const QString& path) {
+  bag::Overview overview;
+  try {
+    QApplication::setOverrideCursor(Qt::WaitCursor);  // an index-less bag is walked once here
+    overview = bag::inspectBag(QDir::toNativeSeparators(path).toStdString());
+    QApplication::restoreOverrideCursor();
+  } catch (const std::exception& e) {
+    QApplication::restoreOverrideCursor();
+    return reportError(tr("Cannot open log"), QString::fromUtf8(e.what()), false);
+  }
+  ui::BagImportDialog dialog(path, std::move(overview), LogOptions{}, this);
   if (dialog.exec() != QDialog::Accepted || !dialog.options()) return false;
   loadLog(path, *dialog.options());
   return true;
@@ -108,11 +128,12 @@ void MainWindow::onLoadFailed(const QString& path, const QString& message, bool 
   emit loadFailed(path, message);
 }
 
-void MainWindow::adoptLog(const QString& path, std::shared_ptr<const ScanSource> source) {
+void MainWindow::adoptLog(const QString& path, std::shared_ptr<const ScanSource> source,
+                          const LogReading& reading) {
   // The document takes the new log first: until remap_->start() below, the controller still holds
   // the previous one, and the settings and cell size that change meanwhile map nothing
   // (onSettingsChanged, onCellSizeChanged).
-  document_->setLog(path, std::move(source));
+  document_->setLog(path, std::move(source), reading);
   if (pendingProject_ && pendingProject_->logPath == path) {
     const PendingProject project = *std::exchange(pendingProject_, std::nullopt);
     document_->restore(*project.state, project.modified);  // the project names this log

@@ -61,6 +61,7 @@ void MainWindow::adoptProject(const QString& path, const ProjectState& state, bo
     // Nothing to load: the project replaces the document now, keeping the open log.
     ProjectState s = state;
     s.logPath = document_->logPath();
+    s.logReading = document_->logReading();
     document_->restore(s, modified);
     document_->setProjectPath(path);
     if (!path.isEmpty()) rememberRecent(path);
@@ -74,7 +75,7 @@ void MainWindow::adoptProject(const QString& path, const ProjectState& state, bo
   pending.modified = modified;
   cancelLoad();
   pendingProject_ = pending;
-  loadLog(state.logPath, LogOptions{}, quiet);
+  loadLog(state.logPath, optionsOf(state.logReading), quiet);
 }
 
 bool MainWindow::saveProjectAs(const QString& path, bool quiet) {

@@ -13,6 +13,7 @@
 
 #include "grid_image.h"
 #include "sonargrid/engine/mapper.h"
+#include "sonargrid/io/log_options.h"
 #include "sonargrid/reference/reference_map.h"
 
 namespace sg::app {
@@ -48,8 +49,38 @@ struct SweepPlan {
   std::vector<std::string> metrics{"vsdns"};
 };
 
+// How the log was read, beyond what its file says: a CSV log's columns and poses file, the ring of
+// a log without geometry, a ROS bag's topics (LogOptions without its progress and cancel hooks). A
+// project reopens its log with these, so that a CSV log or a bag read with chosen topics opens as
+// it was mapped.
+struct LogReading {
+  LogFormat format = LogFormat::Auto;
+  bool lenient = false;
+  std::optional<SonarRing> ring;
+  std::optional<CsvLayout> csv;
+  QString posesPath;  // absolute
+  BagTopics topics;
+  bool operator==(const LogReading&) const = default;
+};
+
+inline LogReading readingOf(const LogOptions& o) {
+  return {o.format, o.lenient, o.ring, o.csv, QString::fromStdString(o.posesPath), o.topics};
+}
+
+inline LogOptions optionsOf(const LogReading& r) {
+  LogOptions o;
+  o.format = r.format;
+  o.lenient = r.lenient;
+  o.ring = r.ring;
+  o.csv = r.csv;
+  o.posesPath = r.posesPath.toStdString();
+  o.topics = r.topics;
+  return o;
+}
+
 struct ProjectState {
   QString logPath;        // absolute; empty when no log is open
+  LogReading logReading;  // how it was read
   QString secondLogPath;  // the second run of the same route (two-run comparison), if any
   std::optional<ReferenceMap> reference;
   QString referencePath;           // the file it came from or was saved to; may be empty

@@ -11,6 +11,7 @@
 
 #include "sonargrid/base/atomic_file.h"
 #include "sonargrid/engine/update_rule.h"
+#include "sonargrid/io/csv_layout.h"
 #include "sonargrid/reference/read_reference.h"
 #include "sonargrid/reference/reference_json.h"
 #include "sonargrid/sweep/sweep_grid.h"
@@ -54,6 +55,42 @@ QJsonObject settingsJson(const MapperSettings& s, double cell) {
                      {"pose", poseText(s.pose)},
                      {"cell", cell},
                      {"parameters", parametersJson(s.parameters)}};
+}
+
+QString resolved(const QString& stored, const QString& projectPath) {
+  if (stored.isEmpty()) return stored;
+  return QFileInfo(QFileInfo(projectPath).absoluteDir(), stored).absoluteFilePath();
+}
+
+QJsonObject ringJson(const SonarRing& ring) {
+  QJsonArray sonars;
+  for (const SonarMount& m : ring.sonars)
+    sonars.append(QJsonArray{m.pose.x(), m.pose.y(), m.pose.heading});
+  return QJsonObject{{"robot", QString::fromStdString(ring.robot)},
+                     {"aperture", ring.apertureRad},
+                     {"min_range", ring.minRange},
+                     {"max_range", ring.maxRange},
+                     {"sonars", sonars}};
+}
+
+// Only what differs from reading the file by its content alone.
+QJsonObject readingJson(const LogReading& r, const QString& projectPath, ProjectPaths paths) {
+  QJsonObject o;
+  if (r.format != LogFormat::Auto)
+    o.insert("format", QString::fromLatin1(logFormatName(r.format).data(),
+                                           static_cast<qsizetype>(logFormatName(r.format).size())));
+  if (r.lenient) o.insert("lenient", true);
+  if (r.ring) o.insert("ring", ringJson(*r.ring));
+  if (r.csv) o.insert("columns", QString::fromStdString(formatCsvLayout(*r.csv)));
+  if (!r.posesPath.isEmpty()) o.insert("poses", storedPath(r.posesPath, projectPath, paths));
+  if (!r.topics.empty()) {
+    QJsonArray sonar;
+    for (const std::string& t : r.topics.sonar) sonar.append(QString::fromStdString(t));
+    o.insert("topics", QJsonObject{{"sonar", sonar},
+                                   {"odometry", QString::fromStdString(r.topics.odometry)},
+                                   {"truth", QString::fromStdString(r.topics.truth)}});
+  }
+  return o;
 }
 
 // Reading: every accessor names the field it reads, so an error says where it is.
@@ -118,6 +155,71 @@ class Reader {
     return c;
   }
 
+  bool boolean(const QJsonObject& o, const QString& field, const QString& key) const {
+    const QJsonValue v = member(o, field, key, false);
+    if (v.isUndefined()) return false;
+    if (!v.isBool()) fail(join(field, key), QStringLiteral("expected true or false"));
+    return v.toBool();
+  }
+
+  SonarRing ring(const QJsonObject& o, const QString& field) const {
+    SonarRing ring;
+    ring.robot =
+        string(o, field, QStringLiteral("robot"), false, QStringLiteral("custom")).toStdString();
+    ring.apertureRad = number(o, field, QStringLiteral("aperture"));
+    ring.minRange = number(o, field, QStringLiteral("min_range"));
+    ring.maxRange = number(o, field, QStringLiteral("max_range"));
+    if (!(ring.apertureRad > 0.0) || !(ring.minRange >= 0.0) || !(ring.maxRange > ring.minRange))
+      fail(field, QStringLiteral("expected aperture > 0 and 0 <= min_range < max_range"));
+    const QJsonArray sonars = array(o, field, QStringLiteral("sonars"));
+    if (sonars.isEmpty()) fail(join(field, QStringLiteral("sonars")), QStringLiteral("empty"));
+    for (qsizetype i = 0; i < sonars.size(); ++i) {
+      const QJsonArray p = sonars[i].toArray();
+      bool ok = sonars[i].isArray() && p.size() == 3;
+      for (qsizetype k = 0; ok && k < 3; ++k)
+        ok = p[k].isDouble() && std::isfinite(p[k].toDouble());
+      if (!ok)
+        fail(QStringLiteral("%1.sonars[%2]").arg(field).arg(i),
+             QStringLiteral("expected [x, y, theta] in metres and radians"));
+      ring.sonars.push_back(SonarMount{Pose2D(p[0].toDouble(), p[1].toDouble(), p[2].toDouble())});
+    }
+    return ring;
+  }
+
+  LogReading reading(const QJsonObject& o, const QString& field, const QString& projectPath) const {
+    LogReading r;
+    const QString format =
+        string(o, field, QStringLiteral("format"), false, QStringLiteral("auto"));
+    if (!parseLogFormat(format.toStdString(), r.format))
+      fail(join(field, QStringLiteral("format")),
+           QStringLiteral("unknown log format \"%1\"").arg(format));
+    r.lenient = boolean(o, field, QStringLiteral("lenient"));
+    const QJsonObject ringObject = object(o, field, QStringLiteral("ring"), false);
+    if (!ringObject.isEmpty()) r.ring = ring(ringObject, join(field, QStringLiteral("ring")));
+    const QString columns = string(o, field, QStringLiteral("columns"), false);
+    if (!columns.isEmpty()) {
+      try {
+        r.csv = parseCsvLayout(columns.toStdString());
+      } catch (const std::invalid_argument& e) {
+        fail(join(field, QStringLiteral("columns")), QString::fromUtf8(e.what()));
+      }
+    }
+    r.posesPath = resolved(string(o, field, QStringLiteral("poses"), false), projectPath);
+    const QJsonObject topics = object(o, field, QStringLiteral("topics"), false);
+    if (!topics.isEmpty()) {
+      const QString tf = join(field, QStringLiteral("topics"));
+      const QJsonArray sonar = array(topics, tf, QStringLiteral("sonar"));
+      for (qsizetype i = 0; i < sonar.size(); ++i) {
+        if (!sonar[i].isString() || sonar[i].toString().isEmpty())
+          fail(QStringLiteral("%1.sonar[%2]").arg(tf).arg(i), QStringLiteral("expected a topic"));
+        r.topics.sonar.push_back(sonar[i].toString().toStdString());
+      }
+      r.topics.odometry = string(topics, tf, QStringLiteral("odometry"), false).toStdString();
+      r.topics.truth = string(topics, tf, QStringLiteral("truth"), false).toStdString();
+    }
+    return r;
+  }
+
   MapperSettings settings(const QJsonObject& o, const QString& field) const {
     MapperSettings s;
     s.model = string(o, field, QStringLiteral("model"), true).toStdString();
@@ -148,16 +250,13 @@ class Reader {
   QString file_;
 };
 
-QString resolved(const QString& stored, const QString& projectPath) {
-  if (stored.isEmpty()) return stored;
-  return QFileInfo(QFileInfo(projectPath).absoluteDir(), stored).absoluteFilePath();
-}
-
 }  // namespace
 
 QByteArray projectJson(const ProjectState& state, const QString& projectPath, ProjectPaths paths) {
   QJsonObject root{{"format", kProjectFormat}, {"version", kProjectVersion}};
   root.insert("log", storedPath(state.logPath, projectPath, paths));
+  if (state.logReading != LogReading{})
+    root.insert("log_reading", readingJson(state.logReading, projectPath, paths));
   root.insert("second_log", storedPath(state.secondLogPath, projectPath, paths));
   if (state.reference) {
     QJsonObject ref{{"path", storedPath(state.referencePath, projectPath, paths)}};
@@ -283,6 +382,8 @@ ProjectState parseProject(const QByteArray& text, const QString& projectPath,
 
   ProjectState s;
   s.logPath = resolved(r.string(root, {}, QStringLiteral("log"), false), projectPath);
+  s.logReading = r.reading(r.object(root, {}, QStringLiteral("log_reading"), false),
+                           QStringLiteral("log_reading"), projectPath);
   s.secondLogPath = resolved(r.string(root, {}, QStringLiteral("second_log"), false), projectPath);
 
   const QJsonObject ref = r.object(root, {}, QStringLiteral("reference"), false);

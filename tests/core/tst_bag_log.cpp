@@ -89,6 +89,8 @@ class TstBagLog : public QObject {
   void sonarPosesComeFromTfStatic();
   void aRosAriaBagLoadsWithTheRobotsRing();
   void topicsArePickedAndReported();
+  void aPreviewIsTheLogsFirstSeconds_data();
+  void aPreviewIsTheLogsFirstSeconds();
   void chosenTopicsOverrideThePicks();
   void aBadMessageIsNamedByFileOffsetAndTopic();
   void aCutBagIsAnErrorOrPartOfTheLog();
@@ -221,6 +223,32 @@ void TstBagLog::aRosAriaBagLoadsWithTheRobotsRing() {
     }
   }
   QVERIFY(echoes > 10000);
+}
+
+void TstBagLog::aPreviewIsTheLogsFirstSeconds_data() {
+  QTest::addColumn<QString>("bag");
+  QTest::newRow("ROS 1, 3 uncompressed chunks") << "room-none.bag";
+  QTest::newRow("MCAP, 2 zstd chunks") << "room-zstd.mcap";
+  QTest::newRow("rosbag2 SQLite") << "room-sqlite";
+}
+
+// The bag import dialog's preview (bag::previewBag): the scans of the first 10 s of log time are
+// the full log's first scans, unchanged. room.sglog has a scan every 0.1 s from 0 to 74.2 s and its
+// bags log every message at its stamp, so the preview holds the scans at 0.0, 0.1, ..., 10.0 s:
+// those of the .sglog with time <= 10 s (101).
+void TstBagLog::aPreviewIsTheLogsFirstSeconds() {
+  QFETCH(QString, bag);
+  LogOptions o;
+  LoadReport report;
+  const Dataset p = bag::previewBag(kBags + bag.toStdString(), o, 10.0, report);
+  const Dataset& s = sglog();
+  std::size_t expected = 0;
+  while (expected < s.scans.size() && s.scans[expected].time <= 10.0) ++expected;
+  QCOMPARE(expected, std::size_t{101});
+  QCOMPARE(p.scans.size(), expected);
+  const Dataset full = readLog(kBags + bag.toStdString());
+  QVERIFY(p.ring == full.ring);
+  for (std::size_t k = 0; k < p.scans.size(); ++k) QVERIFY(p.scans[k] == full.scans[k]);
 }
 
 void TstBagLog::topicsArePickedAndReported() {

@@ -12,8 +12,11 @@
 #include <fstream>
 #include <sstream>
 
+#include "bag_import_dialog.h"
 #include "csv_import_dialog.h"
+#include "document.h"
 #include "main_window.h"
+#include "project_file.h"
 #include "remap_controller.h"
 #include "sonargrid/io/csv_log.h"
 #include "sonargrid/io/log_reader.h"
@@ -170,6 +173,48 @@ class TestMainWindowLoad : public QObject {
     QVERIFY(map->spec == sglog->spec && map->level == sglog->level &&
             map->observed == sglog->observed && map->probability.identical(sglog->probability) &&
             map->native.identical(sglog->native) && map->evidence.identical(sglog->evidence));
+  }
+
+  void aBagOpensTheTopicDialogAndItsProjectKeepsThePick() {
+    // tests/data/bags/room/rosaria-room.bag (python3-rosbag): File > Open shows the topics, the
+    // user chooses the Pioneer's ring for its point clouds and no true pose; the log loads as
+    // `sonargrid-cli --robot p3dx` reads it, and a project saved then reopens it the same way
+    // without asking again.
+    const QString bag = QStringLiteral(SONARGRID_TEST_DATA "/bags/room/rosaria-room.bag");
+    LogOptions cli;
+    cli.ring = SonarRing::pioneer3dx();
+    const Dataset expected = readLog(bag.toStdString(), cli);
+    QTemporaryDir dir;
+    const QString project = dir.filePath(QStringLiteral("rosaria.sgproj"));
+    {
+      app::MainWindow window;
+      window.show();
+      bool asked = false;
+      QTimer::singleShot(0, &window, [&] {
+        auto* d = window.findChild<ui::BagImportDialog*>();
+        if (!d) return;
+        asked = true;
+        d->setRobotPreset(QStringLiteral("p3dx"));
+        d->accept();
+      });
+      QVERIFY(window.openLog(bag));
+      QVERIFY(asked);
+      QVERIFY(window.waitForLoad(30000));
+      QVERIFY(*window.dataset() == expected);
+      const app::LogReading& reading = window.document()->logReading();
+      QCOMPARE(reading.format, LogFormat::Bag);
+      QCOMPARE(reading.topics.sonar, std::vector<std::string>{"/RosAria/sonar"});
+      QCOMPARE(reading.topics.odometry, std::string("/RosAria/pose"));
+      QVERIFY(reading.ring == SonarRing::pioneer3dx());
+      QVERIFY(window.saveProjectAs(project, true));
+    }
+    const app::ProjectState stored = app::readProject(project);
+    QCOMPARE(stored.logReading.topics.sonar, std::vector<std::string>{"/RosAria/sonar"});
+    app::MainWindow window;
+    QVERIFY(window.openProject(project, true));
+    QVERIFY(window.findChild<ui::BagImportDialog*>() == nullptr);
+    QCOMPARE(window.logPath(), bag);
+    QVERIFY(*window.dataset() == expected);
   }
 
   void csvFileOpensTheImportDialog() {

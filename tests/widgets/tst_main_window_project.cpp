@@ -30,6 +30,8 @@
 #include "project_file.h"
 #include "remap_controller.h"
 #include "robot/robot_dock.h"
+#include "sonargrid/io/csv_log.h"
+#include "sonargrid/io/log_reader.h"
 #include "sonargrid/reference/reference_json.h"
 #include "sweep_view.h"
 #include "timeline.h"
@@ -229,6 +231,35 @@ class TestMainWindowProject : public QObject {
     QVERIFY(!window.isWindowModified());
     QCOMPARE(window.document()->projectPath(), file);
     QCOMPARE(window.document()->undoStack()->count(), 0);
+  }
+
+  // A CSV log needs its columns and a ring to be read at all (docs/formats.md, "CSV and text
+  // columns"): the project keeps them, and reopens the log with them. Before, it reopened the file
+  // with no options and refused it for want of a column mapping.
+  void aCsvLogsProjectReopensWithItsColumns() {
+    const QString csv = QStringLiteral(SONARGRID_TEST_DATA "/logs/mm_ddeg.csv");
+    LogOptions options;
+    options.csv = parseCsvLayout(
+        "header=1,time=1,x=2,y=3,theta=4,sonars=5-8,length=mm,angle=ddeg,noecho=5110");
+    options.ring =
+        readSonarGeometry(QStringLiteral(SONARGRID_TEST_DATA "/logs/ring4_mm.geom").toStdString());
+    const Dataset expected = readLog(csv.toStdString(), options);
+    QTemporaryDir dir;
+    const QString file = dir.filePath(QStringLiteral("csv.sgproj"));
+    {
+      MainWindow window;
+      window.loadLog(csv, options, true);
+      QVERIFY(window.waitForLoad(kWaitMs));
+      QVERIFY(window.document()->logReading() == readingOf(options));
+      QVERIFY(window.saveProjectAs(file, true));
+    }
+    MainWindow window;
+    QVERIFY(window.openProject(file, true));
+    QVERIFY(window.waitForMap(kWaitMs));
+    QCOMPARE(window.logPath(), csv);
+    QVERIFY(*window.dataset() == expected);
+    QVERIFY(window.document()->logReading() == readingOf(options));
+    QVERIFY(!window.isWindowModified());
   }
 
   void badProjectKeepsTheDocument_data() {

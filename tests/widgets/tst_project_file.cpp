@@ -31,6 +31,13 @@ MapperSettings settingsOf(const std::string& model, const std::string& rule) {
 ProjectState everyFieldSet(const QString& dir) {
   ProjectState s;
   s.logPath = QFileInfo(kRoom).absoluteFilePath();
+  s.logReading.format = LogFormat::Csv;
+  s.logReading.lenient = true;
+  s.logReading.ring = SonarRing::k2a(0.25);
+  s.logReading.ring->sonars[3].pose.heading = 0.1;  // a ring no preset has
+  s.logReading.csv = parseCsvLayout("time=1,x=2,y=3,theta=4,sonars=5-28,length=mm,noecho=5110");
+  s.logReading.posesPath = dir + QStringLiteral("/poses.csv");
+  s.logReading.topics = {{"/sonar/front", "/sonar/back"}, "/odom", "-"};
   s.secondLogPath =
       QFileInfo(QStringLiteral(SONARGRID_DATASETS "/arafat-room/run-2.sglog")).absoluteFilePath();
   ReferenceMap ref;
@@ -93,6 +100,9 @@ class TestProjectFile : public QObject {
     const ProjectState read = readProject(file);
 
     QCOMPARE(read.logPath, saved.logPath);
+    QVERIFY(read.logReading == saved.logReading);
+    QCOMPARE(read.logReading.ring->sonars.size(), std::size_t{24});
+    QCOMPARE(read.logReading.posesPath, saved.logReading.posesPath);
     QCOMPARE(read.secondLogPath, saved.secondLogPath);
     QVERIFY(read.reference.has_value());
     QCOMPARE(referenceJsonText(*read.reference), referenceJsonText(*saved.reference));
@@ -123,6 +133,8 @@ class TestProjectFile : public QObject {
     const QString file = dir.filePath(QStringLiteral("p.sgproj"));
     const QByteArray text = projectJson(s, file);
     QVERIFY2(text.contains("\"log\": \"logs/a.sglog\""), text.constData());
+    // A log read by its content alone: the project says nothing of how.
+    QVERIFY2(!text.contains("log_reading"), text.constData());
     // The whole folder moved: the log is found beside the project's new place.
     const ProjectState moved = parseProject(text, QStringLiteral("/elsewhere/p.sgproj"));
     QCOMPARE(moved.logPath, QStringLiteral("/elsewhere/logs/a.sglog"));
@@ -182,6 +194,26 @@ class TestProjectFile : public QObject {
     QTest::newRow("pinned row") << QByteArray(text).replace(
                                        "\"log\":", "\"pinned\": [{\"model\": \"hpf\"}], \"log\":")
                                 << QStringLiteral("p.sgproj: pinned[0].rule: missing");
+    QTest::newRow("log format") << QByteArray(text).replace(
+                                       "\"log\":",
+                                       "\"log_reading\": {\"format\": \"rosbag\"}, \"log\":")
+                                << QStringLiteral(
+                                       "p.sgproj: log_reading.format: unknown log format");
+    QTest::newRow("log columns")
+        << QByteArray(text).replace("\"log\":",
+                                    "\"log_reading\": {\"columns\": \"time=1,sonars=0\"}, \"log\":")
+        << QStringLiteral("p.sgproj: log_reading.columns: --columns item 'sonars=0'");
+    QTest::newRow("log ring")
+        << QByteArray(text).replace(
+               "\"log\":",
+               "\"log_reading\": {\"ring\": {\"aperture\": 0.4, \"min_range\": "
+               "0.1, \"max_range\": 5, \"sonars\": [[0, 0]]}}, \"log\":")
+        << QStringLiteral("p.sgproj: log_reading.ring.sonars[0]: expected");
+    QTest::newRow("log topics") << QByteArray(text).replace(
+                                       "\"log\":",
+                                       "\"log_reading\": {\"topics\": {\"sonar\": [3]}}, \"log\":")
+                                << QStringLiteral(
+                                       "p.sgproj: log_reading.topics.sonar[0]: expected a topic");
     QTest::newRow("inline reference")
         << QByteArray(text).replace(
                "\"log\":",
@@ -189,6 +221,37 @@ class TestProjectFile : public QObject {
                "\"units\": \"m\", \"objects\": [{\"name\": \"a\", \"closed\": true, \"corners\": "
                "[[0, 0], [1, 0]]}]}}, \"log\":")
         << QStringLiteral("p.sgproj: reference:");
+  }
+
+  // A bag's topics and a CSV log's columns as the file holds them (docs/formats.md, "Project
+  // file"): what reopens the log as it was read.
+  void logReadingReadsBack() {
+    const QByteArray text =
+        QByteArray(validText())
+            .replace("\"log\":",
+                     "\"log_reading\": {\"format\": \"bag\", \"topics\": {\"sonar\": "
+                     "[\"/RosAria/sonar\"], "
+                     "\"odometry\": \"/RosAria/pose\", \"truth\": \"-\"}, \"ring\": {\"robot\": "
+                     "\"p3dx\", "
+                     "\"aperture\": 0.4363323129985824, \"min_range\": 0.15, \"max_range\": 5, "
+                     "\"sonars\": "
+                     "[[0.069, 0.136, 1.5707963267948966], [0.114, 0.119, 0.8726646259971648]]}, "
+                     "\"poses\": \"p.csv\"}, \"log\":");
+    const ProjectState s = parseProject(text, QStringLiteral("/data/p.sgproj"));
+    QCOMPARE(s.logReading.format, LogFormat::Bag);
+    QCOMPARE(s.logReading.topics.sonar, std::vector<std::string>{"/RosAria/sonar"});
+    QCOMPARE(s.logReading.topics.odometry, std::string("/RosAria/pose"));
+    QCOMPARE(s.logReading.topics.truth, std::string("-"));
+    QVERIFY(s.logReading.ring.has_value());
+    QCOMPARE(s.logReading.ring->robot, std::string("p3dx"));
+    QCOMPARE(s.logReading.ring->sonars.size(), std::size_t{2});
+    QCOMPARE(s.logReading.ring->sonars[1].pose.heading, 0.8726646259971648);  // 50 degrees
+    QCOMPARE(s.logReading.ring->maxRange, 5.0);
+    QCOMPARE(s.logReading.posesPath, QStringLiteral("/data/p.csv"));
+    const LogOptions o = optionsOf(s.logReading);
+    QCOMPARE(o.format, LogFormat::Bag);
+    QVERIFY(o.topics == s.logReading.topics);
+    QVERIFY(readingOf(o) == s.logReading);
   }
 
   void corruptProjectIsRefusedWithItsPlace() {

@@ -343,6 +343,9 @@ class Loader {
   Loader(std::string name, const LogOptions& options, LoadReport& report)
       : name_(std::move(name)), options_(options), report_(report) {}
 
+  // Reads only the messages within `seconds` of log time from the first one read (a preview).
+  void stopAfter(double seconds) { spanNs_ = static_cast<std::int64_t>(seconds * 1e9); }
+
   Dataset run(std::vector<OpenFile>& files) {
     std::vector<Topic> topics;
     for (const OpenFile& f : files) mergeTopics(topics, f.reader->topics());
@@ -350,6 +353,7 @@ class Loader {
     std::uint64_t total = 0, before = 0;
     for (const OpenFile& f : files) total += f.size;
     for (OpenFile& f : files) {
+      if (enough_) break;
       readFile(f, before, total);
       before += f.size;
     }
@@ -473,9 +477,16 @@ class Loader {
         options_.progress(before + done, total);
       };
     }
+    struct Enough {};
     try {
       f.reader->read(wanted, ro, [&](const Message& m) {
         const Topic& t = topics[m.topic];
+        if (spanNs_ >= 0) {
+          if (!firstNs_) firstNs_ = m.logTimeNs;
+          // Compared as a difference of bounded times (kMaxNs): no overflow.
+          if (m.logTimeNs >= -kMaxNs && m.logTimeNs <= kMaxNs && m.logTimeNs - *firstNs_ > spanNs_)
+            throw Enough{};
+        }
         try {
           decode(roles[m.topic], t, m);
         } catch (const MessageError& e) {
@@ -490,6 +501,8 @@ class Loader {
       });
     } catch (const BagError& e) {
       throw fromBagError(e);
+    } catch (const Enough&) {
+      enough_ = true;
     }
     const Skipped& skipped = f.reader->skipped();
     if (skipped.count != 0) {
@@ -861,6 +874,9 @@ class Loader {
   std::map<std::string, Role> roles_;
   Collected collected_;
   std::vector<std::size_t> sensorSlot_;
+  std::int64_t spanNs_ = -1;  // a preview's span of log time, or -1: the whole bag
+  std::optional<std::int64_t> firstNs_;
+  bool enough_ = false;
 };
 
 }  // namespace
@@ -925,6 +941,15 @@ Dataset readBag(const std::string& path, const LogOptions& options, LoadReport& 
   std::vector<OpenFile> files;
   for (const std::string& f : storageFiles(path)) files.push_back(openFile(f));
   return Loader(path, options, report).run(files);
+}
+
+Dataset previewBag(const std::string& path, const LogOptions& options, double seconds,
+                   LoadReport& report) {
+  std::vector<OpenFile> files;
+  for (const std::string& f : storageFiles(path)) files.push_back(openFile(f));
+  Loader loader(path, options, report);
+  loader.stopAfter(seconds);
+  return loader.run(files);
 }
 
 Dataset readBagBytes(std::string_view bytes, const std::string& name, const LogOptions& options,

@@ -44,6 +44,10 @@ Overview inspectBag(const std::string& path);
 // malformed bag or message, LoadCancelled when options.cancel turns true. With options.lenient a
 // bad record or message is skipped and counted in `report`.
 Dataset readBag(const std::string& path, const LogOptions& options, LoadReport& report);
+// The same for the messages of the first `seconds` of log time (from the first message of a chosen
+// topic): a quick look at what a choice of topics gives, read from the first chunks only.
+Dataset previewBag(const std::string& path, const LogOptions& options, double seconds,
+                   LoadReport& report);
 // The same for a ROS 1 bag, an MCAP file or a .db3 in memory.
 Dataset readBagBytes(std::string_view bytes, const std::string& name, const LogOptions& options,
                      LoadReport& report);
