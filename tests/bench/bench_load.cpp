@@ -7,7 +7,6 @@
 //
 //   bench_load [READINGS]        (default 1000000; the files go to $TMPDIR and are removed)
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -19,6 +18,7 @@
 #include <iostream>
 #include <string>
 
+#include "bench_process.h"
 #include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/carmen.h"
 #include "sonargrid/io/log_reader.h"
@@ -27,26 +27,14 @@
 
 namespace {
 
-// A /proc/self/status value in kB ("VmRSS", "VmHWM").
-long statusKb(const char* key) {
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  const std::string prefix = std::string(key) + ":";
-  while (std::getline(in, line)) {
-    if (line.rfind(prefix, 0) == 0) return std::strtol(line.c_str() + prefix.size(), nullptr, 10);
-  }
-  return -1;
-}
+using sg::bench::msSince;
+using sg::bench::statusKb;
 
 // The Dataset's heap and inline bytes, from its vectors' capacities.
 std::size_t datasetBytes(const sg::Dataset& d) {
   std::size_t bytes = sizeof(sg::Dataset) + d.scans.capacity() * sizeof(sg::Scan);
   for (const sg::Scan& s : d.scans) bytes += s.readings.capacity() * sizeof(sg::Reading);
   return bytes;
-}
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 void loadAndMap(const std::string& path, const char* label) {
@@ -84,25 +72,6 @@ void loadAndMap(const std::string& path, const char* label) {
   std::fflush(stdout);
 }
 
-// Runs `body` in a child process and waits for it.
-template <class Body>
-bool inChild(Body body) {
-  const pid_t pid = fork();
-  if (pid < 0) return false;
-  if (pid == 0) {
-    try {
-      body();
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "bench_load: %s\n", e.what());
-      _exit(1);
-    }
-    _exit(0);
-  }
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -111,13 +80,13 @@ int main(int argc, char** argv) {
   const std::string stem = (dir / ("bench_load_" + std::to_string(getpid()))).string();
   const std::string sglog = stem + ".sglog";
   const std::string carmen = stem + ".clf";
-  bool ok = inChild([&] {
+  bool ok = sg::bench::inChild("bench_load", [&] {
     const sg::Dataset d = sg::workload::roomLoopLog(readings);
     sg::writeSglog(d, sglog);
     sg::writeCarmen(d, carmen);
   });
-  ok = ok && inChild([&] { loadAndMap(sglog, "sglog"); });
-  ok = ok && inChild([&] { loadAndMap(carmen, "carmen"); });
+  ok = ok && sg::bench::inChild("bench_load", [&] { loadAndMap(sglog, "sglog"); });
+  ok = ok && sg::bench::inChild("bench_load", [&] { loadAndMap(carmen, "carmen"); });
   std::filesystem::remove(sglog);
   std::filesystem::remove(carmen);
   return ok ? 0 : 1;

@@ -148,6 +148,7 @@ class TstRosbag1 : public QObject {
   void everyCompressionGivesTheSameMessages();
   void wantedTopicsFilterTheMessages();
   void onlyChunksHoldingAWantedTopicAreRead();
+  void anUncompressedChunkGivesOnlyItsWantedRecords();
   void aBagWithoutIndexIsWalkedFromTheStart();
   void anIndexPastTheEndOrNotThereIsWalkedToo();
   void messagesOutsideChunksAreRead();
@@ -305,6 +306,53 @@ void TstRosbag1::onlyChunksHoldingAWantedTopicAreRead() {
     // The broken chunk, then /odom's two other chunks: messages on an undeclared connection.
     QCOMPARE(r->skipped().count, std::size_t{3});
   }
+}
+
+// small_none.bag's one uncompressed chunk holds both topics: a read of one of them takes its
+// records at the offsets of the index data records after the chunk, and gives what a read of the
+// whole chunk gives for that topic (bytes, times, order, the chunk's offset).
+void TstRosbag1::anUncompressedChunkGivesOnlyItsWantedRecords() {
+  const std::string path = kDir + "small_none.bag";
+  const auto r = sg::bag::openRos1(sg::bag::fileSource(path));
+  const std::vector<Got> all = readAll(*r);
+  QCOMPARE(all.size(), std::size_t{7});
+  for (const std::size_t topic : {std::size_t{0}, std::size_t{1}}) {
+    std::vector<bool> wanted(2, false);
+    wanted[topic] = true;
+    std::vector<Got> expected;
+    for (const Got& g : all)
+      if (g.topic == topic) expected.push_back(g);
+    QVERIFY(readAll(*r, wanted) == expected);
+  }
+  // /odom's first message is at T0 + 0.05 s (sec 1700000000, nsec 50 000 000, little-endian): its
+  // index entry is the first such 8 bytes after the chunk, and the entry's 4-byte offset into the
+  // chunk follows them. Offset 0 is the chunk's first record, a connection record.
+  std::string b = readBytes(path);
+  const std::size_t chunkEnd = chunkData(b, kFirstChunk) + le32(b, valueOf(b, "size", kFirstChunk));
+  std::string stamp(8, '\0');
+  put32(stamp, 0, 1700000000u);
+  put32(stamp, 4, 50000000u);
+  const std::size_t entry = b.find(stamp, chunkEnd);
+  QVERIFY(entry != std::string::npos);
+  QVERIFY(le32(b, entry + 8) > 0);
+  put32(b, entry + 8, 0);
+  const auto broken = open(b, "broken.bag");
+  try {
+    readAll(*broken, {false, true});
+    QFAIL("a message the index misplaces was read");
+  } catch (const BagError& e) {
+    QCOMPARE(QString(e.what()),
+             QStringLiteral("broken.bag: offset 4117 (topic /odom): chunk at offset 4117, record "
+                            "at byte 0 of the chunk: the index puts a message of /odom here, but "
+                            "the record is not one"));
+  }
+  sg::bag::ReadOptions lenient;
+  lenient.lenient = true;
+  const std::vector<Got> odom = readAll(*broken, {false, true}, lenient);
+  QCOMPARE(odom.size(), std::size_t{2});  // the other two /odom messages
+  QCOMPARE(broken->skipped().count, std::size_t{1});
+  // The /sonar records' index is intact.
+  QCOMPARE(readAll(*broken, {true, false}).size(), std::size_t{4});
 }
 
 void TstRosbag1::aBagWithoutIndexIsWalkedFromTheStart() {

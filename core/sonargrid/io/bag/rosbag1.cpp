@@ -8,6 +8,10 @@
 //   chunk positions before index_pos, connections of every chunk info declared). Then only the
 //   chunk infos say which chunks hold which connections: read() visits those that hold a wanted
 //   one. Message records outside chunks are not indexed by chunk infos and are not read then.
+//   An uncompressed chunk that also holds unwanted connections (a camera's images beside the
+//   sonar) is not read whole: the index data records after it give each wanted message's offset
+//   in it, and only those records are read (in stored order). When they do not read or disagree
+//   with the chunk info, the whole chunk is read instead. Compressed chunks are read whole.
 // - Otherwise (index_pos 0 as a recording cut short leaves it, an index_pos past the end, an index
 //   that does not parse or agree, a bag without chunks) the constructor walks the records from the
 //   start once and collects the connections in the order they are declared, with their message
@@ -272,8 +276,12 @@ class Ros1Reader final : public Reader {
             throw BagError(file(), c.pos, "",
                            "the index has a chunk here, but the record is op " + hex(op));
           }
-          body = loadChunk(r, f);
-          loaded = true;
+          // An uncompressed chunk that also holds other topics (a camera's): only the wanted
+          // messages are read, where the index data records after it put them.
+          if (allWanted(c.counts, wanted) || !readWantedOnly(r, f, c, pass)) {
+            body = loadChunk(r, f);
+            loaded = true;
+          }
         } catch (const BagError& e) {
           recordError(pass, e);
         }
@@ -470,6 +478,26 @@ class Ros1Reader final : public Reader {
     return c;
   }
 
+  // An index data record (version 1: `count` entries of time and offset, 12 bytes each).
+  struct IndexData {
+    std::uint32_t conn = 0, count = 0;
+    std::uint64_t end = 0;  // where the next record starts
+  };
+
+  // The index data record at `pos`, its entries read into data_; nothing when the record there is
+  // of another op. Throws BagError or Malformed for one that does not read or agree with its count.
+  std::optional<IndexData> indexDataAt(std::uint64_t pos) {
+    FileRecord r;
+    readRecord(pos, r);
+    const Fields f = fields(r);
+    if (f.u8("op") != kIndexData) return std::nullopt;
+    const IndexData d{f.u32("conn"), f.u32("count"), r.end};
+    if (f.u32("ver") != 1 || r.dataLen != std::uint64_t{d.count} * 12)
+      throw Malformed{"an index data record whose version or size does not fit"};
+    readData(r, kMaxChunkBytes, data_);
+    return d;
+  }
+
   // Each connection's earliest and latest log time in chunk `c`, from the index data records that
   // follow it; nothing when they do not read.
   std::optional<std::map<std::uint32_t, std::pair<std::int64_t, std::int64_t>>> chunkTimes(
@@ -481,23 +509,17 @@ class Ros1Reader final : public Reader {
       if (fields(r).u8("op") != kChunk) return std::nullopt;
       std::uint64_t pos = r.end;
       for (std::size_t k = 0; k < c.counts.size() && pos < indexPos_; ++k) {
-        FileRecord ir;
-        readRecord(pos, ir);
-        const Fields f = fields(ir);
-        if (f.u8("op") != kIndexData) break;
-        const std::uint64_t count = f.u32("count");
-        if (f.u32("ver") != 1 || ir.dataLen != count * 12) return std::nullopt;
-        const std::uint32_t conn = f.u32("conn");
-        readData(ir, kMaxChunkBytes, data_);
-        for (std::uint64_t e = 0; e < count; ++e) {
+        const std::optional<IndexData> d = indexDataAt(pos);
+        if (!d) break;
+        for (std::uint64_t e = 0; e < d->count; ++e) {
           const std::int64_t t = timeNs(data_.data() + 12 * e);
-          const auto [it, fresh] = out.try_emplace(conn, t, t);
+          const auto [it, fresh] = out.try_emplace(d->conn, t, t);
           if (!fresh) {
             it->second.first = std::min(it->second.first, t);
             it->second.second = std::max(it->second.second, t);
           }
         }
-        pos = ir.end;
+        pos = d->end;
       }
     } catch (const BagError&) {
       return std::nullopt;
@@ -630,6 +652,99 @@ class Ros1Reader final : public Reader {
     if (skipped_.count++ == 0) skipped_.firstError = e.what();
   }
 
+  bool allWanted(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& counts,
+                 const std::vector<bool>& wanted) const {
+    return std::all_of(counts.begin(), counts.end(), [&](const auto& c) {
+      const auto it = topicOf_.find(c.first);
+      return it != topicOf_.end() && it->second < wanted.size() && wanted[it->second];
+    });
+  }
+
+  // Reads the wanted messages of the uncompressed chunk record `r` from the file, at the offsets
+  // the index data records after it give (in stored order, as a walk of the chunk visits them;
+  // each run of them that no other message interrupts in one read). False, having visited nothing,
+  // when the chunk is compressed or its index data records do not read or disagree with the chunk
+  // info's counts: the caller then reads the whole chunk. A message record that is not where its
+  // index puts it is an error of the chunk.
+  bool readWantedOnly(const FileRecord& r, const Fields& f, const ChunkRef& c, const Pass& pass) {
+    std::uint32_t size = 0;
+    try {
+      if (f.bytes("compression") != "none") return false;
+      size = f.u32("size");
+    } catch (const Malformed&) {
+      return false;
+    }
+    if (size != r.dataLen || size > kMaxChunkBytes) return false;
+    // (offset in the chunk, topic) of each wanted message, and where every indexed message starts.
+    std::vector<std::pair<std::uint32_t, std::size_t>> wanted;
+    std::vector<std::uint32_t> starts;
+    try {
+      std::uint64_t pos = r.end;
+      std::size_t records = 0;
+      for (; records < c.counts.size() && pos < size_; ++records) {
+        const std::optional<IndexData> d = indexDataAt(pos);
+        if (!d) break;
+        const auto declared = std::find(c.counts.begin(), c.counts.end(),
+                                        std::pair<std::uint32_t, std::uint32_t>(d->conn, d->count));
+        if (declared == c.counts.end()) return false;  // not what the chunk info says
+        const auto it = topicOf_.find(d->conn);
+        const bool want = it != topicOf_.end() && isWanted(pass, it->second);
+        for (std::uint32_t e = 0; e < d->count; ++e) {
+          const std::uint32_t offset = le32(data_.data() + std::size_t{12} * e + 8);
+          starts.push_back(offset);
+          if (want) wanted.emplace_back(offset, it->second);
+        }
+        pos = d->end;
+      }
+      if (records != c.counts.size()) return false;
+    } catch (const BagError&) {
+      return false;
+    } catch (const Malformed&) {
+      return false;
+    }
+    std::sort(wanted.begin(), wanted.end());
+    std::sort(starts.begin(), starts.end());
+    // Runs of wanted records with no other indexed record between them, each read at once: a
+    // record ends at the next indexed record's start (or the chunk's end) at the latest.
+    auto boundOf = [&](std::uint32_t offset) -> std::uint32_t {
+      const auto next = std::upper_bound(starts.begin(), starts.end(), offset);
+      return next == starts.end() ? size : std::min(*next, size);
+    };
+    for (std::size_t i = 0; i < wanted.size();) {
+      const std::uint32_t first = wanted[i].first;
+      std::size_t j = i + 1;
+      std::uint32_t end = boundOf(first);
+      while (j < wanted.size() && wanted[j].first == end && end < size) {
+        end = boundOf(wanted[j].first);
+        ++j;
+      }
+      if (first >= size) {
+        for (; i < j; ++i)
+          recordError(pass, chunkError(c.pos, wanted[i].first, topics_[wanted[i].second].name,
+                                       "the index puts a message past the chunk's end"));
+        continue;
+      }
+      src_->read(r.dataPos + first, end - first, chunk_);
+      for (; i < j; ++i) {
+        const auto [offset, topic] = wanted[i];
+        std::optional<Message> message;
+        try {
+          const ChunkRecord rec = chunkRecordAt(chunk_, offset - first);
+          const Fields h(rec.header);
+          if (h.u8("op") != kMessageData || topicOf_.find(h.u32("conn")) == topicOf_.end() ||
+              topicOf_.at(h.u32("conn")) != topic)
+            throw Malformed{"the index puts a message of " + topics_[topic].name +
+                            " here, but the record is not one"};
+          message = Message{topic, h.time("time"), rec.data, c.pos};
+        } catch (const Malformed& m) {
+          recordError(pass, chunkError(c.pos, offset, topics_[topic].name, m.message));
+        }
+        if (message) (*pass.visit)(*message);
+      }
+    }
+    return true;
+  }
+
   // Whether a chunk with these (connection, count) pairs may hold a wanted topic: a connection
   // no record declares may be any (the read reports its messages).
   bool anyWanted(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& counts,
@@ -657,19 +772,13 @@ class Ros1Reader final : public Reader {
     try {
       std::uint64_t pos = chunk.end;
       while (pos < size_) {
-        FileRecord ir;
-        readRecord(pos, ir);
-        const Fields f = fields(ir);
-        if (f.u8("op") != kIndexData) break;
-        const std::uint32_t count = f.u32("count");
-        if (f.u32("ver") != 1 || ir.dataLen != std::uint64_t{count} * 12) return false;
-        const std::uint32_t conn = f.u32("conn");
-        readData(ir, kMaxChunkBytes, data_);
-        counts.emplace_back(conn, count);
-        for (std::uint32_t e = 0; e < count; ++e) {
-          times.emplace_back(conn, timeNs(data_.data() + std::size_t{12} * e));
+        const std::optional<IndexData> d = indexDataAt(pos);
+        if (!d) break;
+        counts.emplace_back(d->conn, d->count);
+        for (std::uint32_t e = 0; e < d->count; ++e) {
+          times.emplace_back(d->conn, timeNs(data_.data() + std::size_t{12} * e));
         }
-        pos = ir.end;
+        pos = d->end;
       }
       if (counts.empty() || pos >= size_) return false;
       FileRecord next;
@@ -847,6 +956,7 @@ class Ros1Reader final : public Reader {
   std::map<std::uint64_t, std::vector<std::pair<std::uint32_t, std::uint32_t>>> scannedChunks_;
   Skipped skipped_;
   std::string scratch_, data_, stored_, chunk_;  // one chunk at a time
+  std::string message_, messageData_;            // one message read on its own
 };
 
 }  // namespace
