@@ -10,7 +10,6 @@
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <thread>
@@ -33,23 +32,33 @@ int testSetDelayMs() {
   return std::clamp(std::atoi(v), 0, 60000);
 }
 
-// Appends whole rows to the CSV, each in one write() and flushed to the file at once, so that a
-// signal at any moment leaves whole rows only.
+// Appends whole rows to the CSV, each in one write() (base/atomic_file.h), so that a signal at
+// any moment leaves whole rows only; synced at least every second and at the end, so that a power
+// cut loses at most the last second's rows (a resumed sweep computes them again).
 class RowAppender {
  public:
-  explicit RowAppender(const std::string& path)
-      : path_(path), out_(path, std::ios::app | std::ios::binary) {
-    if (!out_) throw FileWriteError(path, "cannot open it to append rows");
+  explicit RowAppender(const std::string& path) : file_(path, AppendFile::Start::AtEnd) {}
+  ~RowAppender() {
+    try {
+      file_.sync();
+    } catch (const FileWriteError&) {
+      // Every row is written; only its durability is in doubt, and a destructor must not throw.
+    }
   }
+  RowAppender(const RowAppender&) = delete;
+  RowAppender& operator=(const RowAppender&) = delete;
   void append(const std::string& line) {
-    out_.write(line.data(), static_cast<std::streamsize>(line.size()));
-    out_.flush();
-    if (!out_) throw FileWriteError(path_, "a row could not be written");
+    file_.append(line);
+    const auto now = std::chrono::steady_clock::now();
+    if (now - lastSync_ >= std::chrono::seconds(1)) {
+      file_.sync();
+      lastSync_ = now;
+    }
   }
 
  private:
-  std::string path_;
-  std::ofstream out_;
+  AppendFile file_;
+  std::chrono::steady_clock::time_point lastSync_ = std::chrono::steady_clock::now();
 };
 
 int exitForSignal(int signal) {

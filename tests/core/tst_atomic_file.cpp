@@ -102,6 +102,8 @@ class TstAtomicFile : public QObject {
   void longFileName();
   void temporaryNamesNeverCollide();
   void parallelWritersAndReaders();
+  void appendFileGrowsByWholeRecords();
+  void appendFileErrorsNameThePath();
 };
 
 void TstAtomicFile::writesBytes_data() {
@@ -381,6 +383,90 @@ void TstAtomicFile::parallelWritersAndReaders() {
   QVERIFY(payloadValid(last));
   QVERIFY(last != payload(kWriters, 0));
   QCOMPARE(entries(dir.path()), QStringList{"shared.bin"});
+}
+
+// AppendFile (the recorder's scans, the sweep's rows): Empty starts the file again, AtEnd adds to
+// what is there; every record is in the file as soon as append() returns (another reader sees it,
+// as a process killed then would leave it), sync() and close() report nothing on a good file.
+void TstAtomicFile::appendFileGrowsByWholeRecords() {
+  QTemporaryDir dir;
+  QVERIFY(dir.isValid());
+  const std::string path = dir.filePath("rows.csv").toStdString();
+  {
+    sg::AppendFile f(path, sg::AppendFile::Start::Empty);  // created
+    QVERIFY(f.isOpen());
+    QCOMPARE(f.path(), path);
+    f.append("a,1\n");
+    QCOMPARE(readAll(path), std::string("a,1\n"));
+    f.sync();
+    f.append("b,2\n");
+    QCOMPARE(readAll(path), std::string("a,1\nb,2\n"));
+    f.close();
+    QVERIFY(!f.isOpen());
+    f.close();  // nothing more to do
+  }
+  {
+    sg::AppendFile f(path, sg::AppendFile::Start::AtEnd);  // a resumed sweep
+    f.append("c,3\n");
+    f.sync();
+  }  // closed by the destructor
+  QCOMPARE(readAll(path), std::string("a,1\nb,2\nc,3\n"));
+  {
+    sg::AppendFile f(path, sg::AppendFile::Start::Empty);  // a new recording over an old one
+    f.append("x\n");
+  }
+  QCOMPARE(readAll(path), std::string("x\n"));
+  const std::string fresh = dir.filePath("fresh.csv").toStdString();
+  {
+    sg::AppendFile f(fresh, sg::AppendFile::Start::AtEnd);  // created when missing
+    f.append("first\n");
+    f.sync();  // syncs the new file's folder too
+  }
+  QCOMPARE(readAll(fresh), std::string("first\n"));
+  QCOMPARE(entries(dir.path()), (QStringList{"fresh.csv", "rows.csv"}));  // no temporary files
+}
+
+void TstAtomicFile::appendFileErrorsNameThePath() {
+  try {
+    sg::AppendFile f("/nonexistent-dir/rows.csv", sg::AppendFile::Start::AtEnd);
+    QFAIL("a file in a missing folder opened");
+  } catch (const sg::FileWriteError& e) {
+    QCOMPARE(QString(e.what()), QString("cannot write '/nonexistent-dir/rows.csv': ") +
+                                    QString::fromStdString(std::strerror(ENOENT)));
+  }
+  QTemporaryDir dir;
+  const std::string path = dir.filePath("closed.csv").toStdString();
+  sg::AppendFile f(path, sg::AppendFile::Start::Empty);
+  f.close();
+  try {
+    f.append("late\n");
+    QFAIL("a closed file took a record");
+  } catch (const sg::FileWriteError& e) {
+    QCOMPARE(QString(e.what()),
+             QString::fromStdString("cannot write '" + path + "': the file is closed"));
+  }
+  // A record the file size limit cuts (as a full disk would): the error names the file and why.
+  struct rlimit saved {};
+  QVERIFY(::getrlimit(RLIMIT_FSIZE, &saved) == 0);
+  struct rlimit small = saved;
+  small.rlim_cur = 1000;
+  const auto previous = ::signal(SIGXFSZ, SIG_IGN);
+  std::string what;
+  {
+    sg::AppendFile big(dir.filePath("big.csv").toStdString(), sg::AppendFile::Start::Empty);
+    big.append(std::string(900, 'a'));
+    QVERIFY(::setrlimit(RLIMIT_FSIZE, &small) == 0);
+    try {
+      big.append(std::string(300, 'b'));
+    } catch (const sg::FileWriteError& e) {
+      what = e.what();
+    }
+    ::setrlimit(RLIMIT_FSIZE, &saved);
+  }
+  ::signal(SIGXFSZ, previous);
+  QCOMPARE(QString::fromStdString(what),
+           QString::fromStdString("cannot write '" + dir.filePath("big.csv").toStdString() +
+                                  "': " + std::strerror(EFBIG)));
 }
 
 QTEST_GUILESS_MAIN(TstAtomicFile)

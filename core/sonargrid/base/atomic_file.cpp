@@ -81,6 +81,25 @@ int syncRetrying(int fd) {
   return rc;
 }
 
+// Makes a new or renamed file's name in `folder` durable. A folder we may not open for reading
+// (write and search permission only) cannot be synced by us; file systems that cannot sync a
+// folder say EINVAL. `what` starts the message: what is in place although the folder is not synced.
+void syncFolderOf(const fs::path& folder, const std::string& path, const std::string& what) {
+  const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir < 0) return;
+  const int rc = syncRetrying(dir);
+  const int err = errno;
+  ::close(dir);
+  if (rc != 0 && err != EINVAL && err != ENOTSUP && err != EROFS)
+    throw FileWriteError(path, what + " but the directory '" + folder.string() +
+                                   "' cannot be synced: " + osReason(err));
+}
+
+fs::path folderOf(const std::string& path) {
+  const fs::path folder = fs::path(path).parent_path();
+  return folder.empty() ? fs::path(".") : folder;
+}
+
 }  // namespace
 
 FileWriteError::FileWriteError(std::string path, std::string reason, const std::string& kind)
@@ -219,18 +238,8 @@ struct AtomicFileWriter {
     syncFolder();
   }
 
-  // Makes the rename itself durable. A folder we may not open for reading (write and search
-  // permission only) cannot be synced by us; file systems that cannot sync a folder say EINVAL.
-  void syncFolder() const {
-    const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dir < 0) return;
-    const int rc = syncRetrying(dir);
-    const int err = errno;
-    ::close(dir);
-    if (rc != 0 && err != EINVAL && err != ENOTSUP && err != EROFS)
-      throw FileWriteError(path, "the new file is in place but the directory '" + folder.string() +
-                                     "' cannot be synced: " + osReason(err));
-  }
+  // Makes the rename itself durable.
+  void syncFolder() const { syncFolderOf(folder, path, "the new file is in place"); }
 };
 
 void writeFileAtomically(const std::string& path, const std::function<void(FileSink&)>& produce) {
@@ -247,6 +256,52 @@ std::string temporarySiblingName(const std::string& path) {
 
 void writeFileAtomically(const std::string& path, std::string_view bytes) {
   writeFileAtomically(path, [bytes](FileSink& sink) { sink.write(bytes); });
+}
+
+AppendFile::AppendFile(std::string path, Start start) : path_(std::move(path)) {
+  struct stat old {};
+  folderToSync_ = ::stat(path_.c_str(), &old) != 0;  // created here
+  const int flags = O_WRONLY | O_CREAT | O_CLOEXEC | (start == Start::Empty ? O_TRUNC : O_APPEND);
+  do {
+    fd_ = ::open(path_.c_str(), flags, 0666);
+  } while (fd_ < 0 && errno == EINTR);
+  if (fd_ < 0) throw FileWriteError(path_, osReason(errno));
+}
+
+AppendFile::~AppendFile() {
+  closeQuietly(fd_);
+}
+
+void AppendFile::append(std::string_view bytes) {
+  if (fd_ < 0) throw FileWriteError(path_, "the file is closed");
+  const char* p = bytes.data();
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd_, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw FileWriteError(path_, osReason(errno));
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+}
+
+void AppendFile::sync() {
+  if (fd_ < 0) throw FileWriteError(path_, "the file is closed");
+  if (syncRetrying(fd_) != 0) throw FileWriteError(path_, "cannot sync it: " + osReason(errno));
+  if (folderToSync_) {
+    syncFolderOf(folderOf(path_), path_, "the file is synced");
+    folderToSync_ = false;
+  }
+}
+
+void AppendFile::close() {
+  if (fd_ < 0) return;
+  const int f = fd_;
+  fd_ = -1;
+  // Linux closes the descriptor even when close() reports EINTR; only a real error counts.
+  if (::close(f) != 0 && errno != EINTR) throw FileWriteError(path_, osReason(errno));
 }
 
 }  // namespace sg

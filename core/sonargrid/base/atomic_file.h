@@ -58,6 +58,42 @@ class FileSink {
   std::string buffer_;
 };
 
+// A file grown by whole records while it is written: a recording's scans (SglogRecorder), a
+// sweep's CSV rows. It is not atomic (the file is there, and growing, from the start); instead
+// each append() is one write() of a whole record (retried until all of it is written), so that a
+// process killed at any moment leaves whole records only, and sync() makes what was appended
+// survive a power cut (fsync; the first sync after creating the file also syncs its folder, so
+// that the new file's name survives too).
+class AppendFile {
+ public:
+  enum class Start {
+    Empty,  // create the file, or empty one that is there
+    AtEnd,  // append to the file that is there, or create it
+  };
+  // Throws FileWriteError when the file cannot be opened.
+  AppendFile(std::string path, Start start);
+  // Closes without syncing (nothing throws); close() reports errors.
+  ~AppendFile();
+  AppendFile(const AppendFile&) = delete;
+  AppendFile& operator=(const AppendFile&) = delete;
+
+  // Throws FileWriteError (disk full, I/O error, closed): the file then ends after the records
+  // appended before, unless the system wrote part of this one (a full disk).
+  void append(std::string_view bytes);
+  // Throws FileWriteError when the file or a new file's folder cannot be synced.
+  void sync();
+  // Closes; later calls do nothing. Throws FileWriteError when the system reports an error.
+  void close();
+
+  bool isOpen() const { return fd_ >= 0; }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  bool folderToSync_ = false;  // the file was created: its folder's entry is not durable yet
+};
+
 // The temporary name the writer draws for `path`: "PATH.<16 hex digits>.tmp" in the same folder
 // (the file name shortened when the whole would pass 255 bytes). Each call gives another name; no
 // two calls in any thread or process are meant to agree, and O_EXCL settles the rare case that they

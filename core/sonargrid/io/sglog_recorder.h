@@ -11,8 +11,10 @@
 #include <chrono>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 
+#include "sonargrid/base/atomic_file.h"
 #include "sonargrid/data/dataset.h"
 
 namespace sg {
@@ -21,7 +23,7 @@ class SglogRecorder {
  public:
   // Creates `path` (replacing a file of that name), writes the header of `header` (its name and
   // ring; its scans are ignored) and makes the file and its directory entry durable. Throws
-  // std::runtime_error naming the path when it cannot.
+  // std::runtime_error naming the path when it cannot (FileWriteError for the file itself).
   SglogRecorder(const std::string& path, const Dataset& header, double syncInterval = 1.0);
   ~SglogRecorder();
   SglogRecorder(const SglogRecorder&) = delete;
@@ -40,15 +42,14 @@ class SglogRecorder {
   const SonarRing& ring() const { return ring_; }
   std::size_t scans() const { return scans_; }
   std::size_t readings() const { return readings_; }
-  bool finished() const { return fd_ < 0; }
+  bool finished() const { return !file_; }
 
  private:
-  void writeAll(const std::string& bytes);
   [[noreturn]] void fail(const std::string& why) const;
 
   std::string path_;
   SonarRing ring_;
-  int fd_ = -1;
+  std::optional<AppendFile> file_;  // none once finished
   std::chrono::steady_clock::duration syncInterval_;
   std::chrono::steady_clock::time_point lastSync_;
   bool dirty_ = false;
