@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "dmin_overlay.h"
+#include "sonargrid/data/scan_poses.h"
 
 namespace sg::ui {
 
@@ -54,8 +55,9 @@ FocusArea focusArea(const Dataset* data, PoseSource pose, const ReferenceMap* re
   };
   if (data) {
     const PoseSource source =
-        pose == PoseSource::Truth && !data->hasTruth() ? PoseSource::Odometry : pose;
-    for (const Scan& scan : data->scans) take(data->pose(scan, source).position, marginMetres);
+        pose == PoseSource::Truth && !anyScanHasPose(*data, pose) ? PoseSource::Odometry : pose;
+    for (const Scan& scan : data->scans)
+      if (hasPose(scan, source)) take(data->pose(scan, source).position, marginMetres);
   }
   if (reference)
     for (const auto& line : referencePolylines(*reference))
@@ -76,15 +78,20 @@ std::vector<std::vector<Position>> referencePolylines(const ReferenceMap& refere
   return lines;
 }
 
-void placeRobot(GridScene& scene, const Dataset& data, PoseSource source, std::size_t scan) {
+void placeRobot(GridScene& scene, const Dataset& data, PoseSource asked, std::size_t scan) {
+  // A log without any true pose is drawn by its odometry, as its map is.
+  const PoseSource source = anyScanHasPose(data, asked) ? asked : PoseSource::Odometry;
   scene.path.clear();
   scene.sonars.clear();
   scene.beams.clear();
   scene.robot.reset();
   if (scan >= data.scans.size()) return;
   scene.path.reserve(scan + 1);
+  // A scan without the pose of `source` is not on the map's path (data/scan_poses.h).
   for (std::size_t i = 0; i <= scan; ++i)
-    scene.path.push_back(data.pose(data.scans[i], source).position);
+    if (hasPose(data.scans[i], source))
+      scene.path.push_back(data.pose(data.scans[i], source).position);
+  if (!hasPose(data.scans[scan], source)) return;
   const Pose2D robot = data.pose(data.scans[scan], source);
   scene.robot = robot;
   for (const SonarMount& mount : data.ring.sonars)

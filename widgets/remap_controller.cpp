@@ -7,6 +7,8 @@
 #include <exception>
 #include <optional>
 
+#include "sonargrid/data/scan_poses.h"
+
 namespace sg::ui {
 
 // The mapper of the last complete run, kept for continuing it forward in time. When the log's
@@ -246,8 +248,8 @@ RemapController::Outcome RemapController::mapLoaded(WarmMapper& warm, const Requ
   const Dataset& data = *log;
   const MapperSettings& settings = request.settings;
   const double until = request.until;
-  if (settings.pose == PoseSource::Truth && !data.hasTruth())
-    throw MapperError("the log has no true pose for every scan; map with odometry");
+  if (settings.pose == PoseSource::Truth && !anyScanHasPose(data, PoseSource::Truth))
+    throw MapperError(std::string(kNoTruePose) + "; map with odometry");
   Outcome out;
   const auto t0 = std::chrono::steady_clock::now();
   if (warm.data != log) {

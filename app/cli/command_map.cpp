@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "map_options.h"
+#include "sonargrid/data/scan_poses.h"
 #include "sonargrid/export/map_export.h"
 #include "thread_flags.h"
 
@@ -75,11 +76,16 @@ GridSpec fittingGridOf(const Dataset& data, const MapOptions& o, const std::stri
 
 BuiltMap buildMap(const Dataset& data, const MapOptions& o, const std::string& logPath,
                   const std::optional<GridSpec>& onGrid, FootprintObserver* observer) {
-  if (o.settings.pose == PoseSource::Truth && !data.hasTruth()) {
-    throw InputError(logPath + ": the log has no true pose for every scan; map with --pose odom");
+  if (o.settings.pose == PoseSource::Truth && !anyScanHasPose(data, PoseSource::Truth)) {
+    throw InputError(logPath + ": " + kNoTruePose + "; map with --pose odom");
   }
   const GridSpec grid = onGrid ? *onGrid : fittingGridOf(data, o, logPath);
   BuiltMap out;
+  out.scansWithoutTruth = scansWithoutPose(data, o.settings.pose);
+  if (out.scansWithoutTruth != 0) {
+    std::cerr << "sonargrid-cli: note: " << logPath << ": " << out.scansWithoutTruth << " of "
+              << data.scans.size() << " scans have no true pose and are left out of the map\n";
+  }
   try {
     Mapper mapper(data.ring, grid, o.settings);
     mapper.setObserver(observer);
@@ -131,6 +137,7 @@ int runMap(Arguments& args) {
                    {"cell_m", m.spec.cellSize},
                    {"origin", {m.spec.origin.x(), m.spec.origin.y()}}};
     out["readings"] = built.readings;
+    out["scans_without_truth"] = built.scansWithoutTruth;
     out["cells_filled"] = m.filledCount();
     out["cv_histogram"] = m.levelHistogram();
     out["elapsed_ms"] = built.elapsedMs;

@@ -43,6 +43,9 @@ struct BuiltMap {
   OccupancyMap map;
   std::size_t readings = 0;
   double elapsedMs = 0.0;  // mapping only, not reading the log
+  // Scans left out for want of the pose asked for (--pose truth: a scan without a true pose;
+  // core/sonargrid/data/scan_poses.h). buildMap says so on stderr.
+  std::size_t scansWithoutTruth = 0;
 };
 // The log's fitting grid at --cell; GridLimitError naming `logPath`, the scan and the grid limit
 // when it cannot be made (main() makes that exit status 2).

@@ -4,6 +4,7 @@
 #include <QDir>
 #include <atomic>
 
+#include "sonargrid/data/scan_poses.h"
 #include "sonargrid/io/log_reader.h"
 
 namespace sg::app {
@@ -61,7 +62,7 @@ void LogLoader::start(const QString& path, const LogOptions& options, PoseSource
           const std::shared_ptr<const Dataset> dataset = source->view();
           // The pose source is the one the window will map with.
           try {
-            dataset->fittingGrid(pose == PoseSource::Truth && dataset->hasTruth()
+            dataset->fittingGrid(pose == PoseSource::Truth && anyScanHasPose(*dataset, pose)
                                      ? PoseSource::Truth
                                      : PoseSource::Odometry,
                                  cell);

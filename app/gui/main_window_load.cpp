@@ -23,6 +23,7 @@
 #include "log_loader.h"
 #include "main_window.h"
 #include "remap_controller.h"
+#include "sonargrid/data/scan_poses.h"
 #include "sonargrid/io/bag/bag_log.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/reference/read_reference.h"
@@ -181,10 +182,19 @@ void MainWindow::adoptLog(const QString& path, std::shared_ptr<const ScanSource>
   rememberRecent(document_->projectPath().isEmpty() ? path : document_->projectPath());
   QSettings().setValue("files/lastDirectory", QFileInfo(path).absolutePath());
 
-  if (document_->mapperSettings().pose == PoseSource::Truth && !run.hasTruth()) {
+  if (document_->mapperSettings().pose == PoseSource::Truth &&
+      !anyScanHasPose(run, PoseSource::Truth)) {
     MapperSettings s = document_->mapperSettings();
     s.pose = PoseSource::Odometry;
     document_->adjustMapperSettings(s);
+  } else if (const std::size_t without = scansWithoutPose(run, document_->mapperSettings().pose);
+             without != 0) {
+    // A simulator's first SIP before its first SIMSTAT (data/scan_poses.h): left out, and said.
+    statusBar()->showMessage(tr("%1 of %2 scans have no true pose and are left out of the map "
+                                "(Mapping ▸ Pose ▸ Odometry maps them all)")
+                                 .arg(without)
+                                 .arg(run.scans.size()),
+                             15000);
   }
   std::vector<double> times;
   double end = 0.0;

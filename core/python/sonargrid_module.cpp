@@ -22,6 +22,7 @@
 #include "sonargrid/base/concurrency.h"
 #include "sonargrid/base/log_error.h"
 #include "sonargrid/data/dataset.h"
+#include "sonargrid/data/scan_poses.h"
 #include "sonargrid/engine/mapper.h"
 #include "sonargrid/engine/sensor_model.h"
 #include "sonargrid/engine/update_rule.h"
@@ -152,8 +153,8 @@ GridSpec fittingGridOf(const Dataset& data, PoseSource pose, double cell, const 
 OccupancyMap buildMap(const Dataset& data, const std::string& path, const MapperSettings& settings,
                       const GridSpec& grid, double until, FootprintObserver* observer,
                       std::size_t* readings) {
-  if (settings.pose == PoseSource::Truth && !data.hasTruth())
-    throw MapperError(path + ": the log has no true pose for every scan; map with pose='odom'");
+  if (settings.pose == PoseSource::Truth && !anyScanHasPose(data, PoseSource::Truth))
+    throw MapperError(path + ": " + kNoTruePose + "; map with pose='odom'");
   try {
     Mapper mapper(data.ring, grid, settings);
     mapper.setObserver(observer);

@@ -32,8 +32,9 @@ using cli_test::kCli;
 const QString kRoomLog = QStringLiteral(SONARGRID_DATASETS "/room/room.sglog");
 
 // The keys `map --json` prints, no more and no fewer (docs/cli.md).
-const QStringList kMapKeys = {"model",    "rule",         "params",       "grid",
-                              "readings", "cells_filled", "cv_histogram", "elapsed_ms"};
+const QStringList kMapKeys = {"model",        "rule",         "params",
+                              "grid",         "readings",     "scans_without_truth",
+                              "cells_filled", "cv_histogram", "elapsed_ms"};
 const QStringList kGridKeys = {"width", "height", "cell_m", "origin"};
 const QStringList kParameterKeys = {"name", "symbol", "unit", "min", "max", "default", "source"};
 
@@ -111,6 +112,7 @@ class TstCli : public QObject {
   void mapSet_data();
   void mapSet();
   void mapPoseTruth();
+  void mapLeavesOutScansWithoutTruth();
   void mapPng_data();
   void mapPng();
   void mapRosMap();
@@ -554,6 +556,48 @@ void TstCli::mapSet() {
            "--set did not change the map");
 }
 
+// The room log with its first scan's true pose replaced by `none` (as a simulator's first SIP
+// before its first SIMSTAT is recorded): --pose truth maps the other 742 scans, says so on stderr
+// and in the JSON, and gives the map of the log without that scan.
+void TstCli::mapLeavesOutScansWithoutTruth() {
+  QList<QByteArray> partial = roomLines_;
+  QList<QByteArray> without;
+  int scans = 0;
+  qint64 firstScanReadings = 0;
+  for (QByteArray& line : partial) {
+    const QList<QByteArray> f = fieldsOf(line);
+    const bool scan = !f.isEmpty() && f[0] == "scan";
+    if (scan) ++scans;
+    if (scan && scans == 1) line = QList<QByteArray>(f.begin(), f.begin() + 5).join(' ') + " none";
+    if (scans == 1 && !f.isEmpty() && f[0] == "r") ++firstScanReadings;
+    if (scans != 1) without << line;
+  }
+  QCOMPARE(firstScanReadings, qint64{16});  // room.sglog: 16 sonars a scan
+  const QString partialLog = tmp_.filePath(QStringLiteral("first_scan_without_truth.sglog"));
+  const QString withoutLog = tmp_.filePath(QStringLiteral("without_first_scan.sglog"));
+  QVERIFY(writeFile(partialLog, partial.join('\n')));
+  QVERIFY(writeFile(withoutLog, without.join('\n')));
+  const QStringList args = {"map",     "--log", partialLog, "--pose", "truth",
+                            "--model", "himm",  "--rule",   "himm",   "--json"};
+  const Run r = runCli(args);
+  QVERIFY2(r.finished && r.code == 0, describe(args, r));
+  QCOMPARE(QString::fromUtf8(r.err.trimmed()),
+           QStringLiteral("sonargrid-cli: note: %1: 1 of 743 scans have no true pose and are left "
+                          "out of the map")
+               .arg(partialLog));
+  const QJsonObject o = QJsonDocument::fromJson(r.out).object();
+  QCOMPARE(count(o.value("scans_without_truth")), qint64{1});
+  QCOMPARE(count(o.value("readings")), static_cast<qint64>(times_.size()) - firstScanReadings);
+  QJsonObject reference;
+  mapJson(QStringList{"map", "--log", withoutLog, "--pose", "truth", "--model", "himm", "--rule",
+                      "himm", "--json"},
+          reference);
+  QCOMPARE(count(reference.value("scans_without_truth")), qint64{0});
+  QCOMPARE(o.value("grid"), reference.value("grid"));
+  QCOMPARE(o.value("cv_histogram"), reference.value("cv_histogram"));
+  QCOMPARE(o.value("cells_filled"), reference.value("cells_filled"));
+}
+
 void TstCli::mapPoseTruth() {
   const QStringList model = {"--model", "hpf", "--rule", "bayes", "--json"};
   QJsonObject roomTruth;
@@ -790,8 +834,7 @@ void TstCli::errors_data() {
   QTest::newRow("--pose truth without true poses")
       << QStringList{"map",    "--log", noTruthLog_, "--model", "hpf",
                      "--rule", "bayes", "--pose",    "truth"}
-      << 2 << noTruthLog_ + ": the log has no true pose for every scan; map with --pose odom"
-      << true;
+      << 2 << noTruthLog_ + ": the log has no true pose in any scan; map with --pose odom" << true;
 
   // A log no grid can hold is input to fix (exit 2), not a 1 x 38 grid (an int overflow) and exit
   // 0. tests/data/sglog/far_pose.sglog: scans at x = 0 and 0.25 with 1 m echoes on a 25° cone

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "sonargrid/base/concurrency.h"
+#include "sonargrid/data/scan_poses.h"
 #include "sonargrid/engine/mapper.h"
 #include "sonargrid/engine/scan_source.h"
 #include "sonargrid/io/sglog.h"
@@ -117,6 +118,7 @@ class TstMapper : public QObject {
   void dirtyRowsAreTheRowsWritten_data();
   void dirtyRowsAreTheRowsWritten();
   void streamFromAnotherThread();
+  void scansWithoutTruthAreLeftOut();
   void appendErrors();
   void snapshotsStayAsTaken_data();
   void snapshotsStayAsTaken();
@@ -905,17 +907,53 @@ void TstMapper::streamFromAnotherThread() {
   QVERIFY(sameLayers(batch.snapshot(), m.liveMap()));
 }
 
+// A simulator's first SIP before its first SIMSTAT leaves that scan without a true pose
+// (data/scan_poses.h): mapped with true poses, it is left out (never placed by its odometry, which
+// is another frame), the same in batch, appended and scan by scan, and counted.
+void TstMapper::scansWithoutTruthAreLeftOut() {
+  const Dataset d = corridor(3);
+  Dataset partial = d;
+  partial.scans[0].truth.reset();
+  Dataset without = d;  // the same log without its first scan
+  without.scans.erase(without.scans.begin());
+  QCOMPARE(scansWithoutPose(partial, PoseSource::Truth), std::size_t{1});
+  QCOMPARE(scansWithoutPose(partial, PoseSource::Odometry), std::size_t{0});
+  MapperSettings s;
+  s.pose = PoseSource::Truth;
+  // The fitting grid leaves it out too: the first scan's odometry is not in it.
+  QVERIFY(partial.fittingGrid(PoseSource::Truth, 0.05) ==
+          without.fittingGrid(PoseSource::Truth, 0.05));
+  const GridSpec grid = without.fittingGrid(PoseSource::Truth, 0.05);
+  Mapper batch(d.ring, grid, s);
+  QVERIFY(batch.mapDataset(partial));
+  QCOMPARE(batch.readingsIntegrated(), std::size_t{32});  // 2 scans x 16 sonars
+  Mapper expected(d.ring, grid, s);
+  QVERIFY(expected.mapDataset(without));
+  QVERIFY(sameLayers(batch.snapshot(), expected.snapshot()));
+  Mapper streamed(d.ring, seedGrid(d), s);
+  QVERIFY(streamed.append(std::span(partial.scans).first(1)));  // nothing to map yet
+  QCOMPARE(streamed.readingsIntegrated(), std::size_t{0});
+  QVERIFY(streamed.append(std::span(partial.scans).subspan(1)));
+  QCOMPARE(streamed.readingsIntegrated(), std::size_t{32});
+  Mapper onItsGrid(d.ring, streamed.grid(), s);
+  QVERIFY(onItsGrid.mapDataset(partial));
+  QVERIFY(sameLayers(streamed.snapshot(), onItsGrid.snapshot()));
+  Mapper oneByOne(d.ring, grid, s);
+  for (const Scan& scan : partial.scans) oneByOne.integrate(scan);
+  QVERIFY(sameLayers(oneByOne.snapshot(), expected.snapshot()));
+}
+
 void TstMapper::appendErrors() {
   const Dataset d = corridor(3);
   MapperSettings s;
-  // Truth asked for, a scan without it: refused before anything is integrated.
+  // Truth asked for, no scan has it: refused before anything is integrated.
   s.pose = PoseSource::Truth;
   Dataset noTruth = d;
-  noTruth.scans[2].truth.reset();
+  for (Scan& scan : noTruth.scans) scan.truth.reset();
   Mapper m(d.ring, seedGrid(d), s);
   try {
-    m.append(noTruth.scans);
-    QFAIL("a scan without a true pose was mapped with true poses");
+    m.mapDataset(noTruth);
+    QFAIL("a log without a true pose was mapped with true poses");
   } catch (const MapperError& e) {
     QVERIFY2(std::string(e.what()).find("no true pose") != std::string::npos, e.what());
   }

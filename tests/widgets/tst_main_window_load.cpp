@@ -6,6 +6,7 @@
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QStandardPaths>
+#include <QStatusBar>
 #include <QTemporaryDir>
 #include <QtTest>
 #include <algorithm>
@@ -18,6 +19,7 @@
 #include "main_window.h"
 #include "project_file.h"
 #include "remap_controller.h"
+#include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/csv_log.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/io/sglog.h"
@@ -215,6 +217,33 @@ class TestMainWindowLoad : public QObject {
     QVERIFY(window.findChild<ui::BagImportDialog*>() == nullptr);
     QCOMPARE(window.logPath(), bag);
     QVERIFY(*window.dataset() == expected);
+  }
+
+  void scansWithoutTruthAreLeftOutAndSaid() {
+    // room.sglog with its first scan's true pose removed (a simulator's first SIP before its first
+    // SIMSTAT): mapped from the true pose, the window keeps that pose source, leaves the scan out
+    // (the map is that of the other 742 scans) and says so in the status bar.
+    Dataset partial = readLog(kRoom.toStdString());
+    partial.scans.front().truth.reset();
+    Dataset without = partial;
+    without.scans.erase(without.scans.begin());
+    const QString path = dir_.filePath("first_scan_without_truth.sglog");
+    writeSglog(partial, path.toStdString());
+    app::MainWindow window;
+    window.show();
+    MapperSettings s = window.document()->mapperSettings();
+    s.pose = PoseSource::Truth;
+    window.setMapperSettings(s);
+    QVERIFY(window.openLog(path, true) && window.waitForMap(60000));
+    QCOMPARE(window.document()->mapperSettings().pose, PoseSource::Truth);
+    QVERIFY2(window.statusBar()->currentMessage().startsWith(
+                 QStringLiteral("1 of 743 scans have no true pose and are left out of the map")),
+             qPrintable(window.statusBar()->currentMessage()));
+    const std::shared_ptr<const OccupancyMap> map = window.remapController()->lastMap();
+    QVERIFY(map != nullptr);
+    Mapper expected(without.ring, map->spec, s);
+    QVERIFY(expected.mapDataset(without));
+    QVERIFY(map->level == expected.snapshot().level);
   }
 
   void csvFileOpensTheImportDialog() {

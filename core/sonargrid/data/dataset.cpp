@@ -6,6 +6,8 @@
 #include <limits>
 #include <sstream>
 
+#include "sonargrid/data/scan_poses.h"
+
 namespace sg {
 
 std::size_t Dataset::readingCount() const {
@@ -24,9 +26,12 @@ namespace {
 // Every point of a scan that its grid must hold: the robot, each sonar that read, and each echo at
 // its range on the acoustic axis and on both cone edges. One definition for sizing the grid and for
 // naming the scan that makes it too large.
+// A scan without the pose asked for is left out when others have it (scan_poses.h: the mapper
+// leaves it out too); a log without any true pose is sized by its odometry.
 template <typename Visit>
-void forEachPoint(const Dataset& d, const Scan& s, PoseSource source, Visit&& visit,
+void forEachPoint(const Dataset& d, const Scan& s, PoseSource source, bool leaveOut, Visit&& visit,
                   bool& anyEcho) {
+  if (leaveOut && !hasPose(s, source)) return;
   const Pose2D& robot = d.pose(s, source);
   for (const Reading& r : s.readings) {
     if (r.sonar >= d.ring.size()) continue;  // the mapper reports it
@@ -57,7 +62,9 @@ Position medianPosition(const Dataset& d, PoseSource source) {
   std::vector<double> ys;
   xs.reserve(d.scans.size());
   ys.reserve(d.scans.size());
+  const bool leaveOut = anyScanHasPose(d, source);
   for (const Scan& s : d.scans) {
+    if (leaveOut && !hasPose(s, source)) continue;
     xs.push_back(d.pose(s, source).position.x());
     ys.push_back(d.pose(s, source).position.y());
   }
@@ -75,9 +82,10 @@ GridSpec Dataset::fittingGrid(PoseSource source, double cellSize, double margin)
   Position lo(kInf, kInf), hi(-kInf, -kInf);
   bool anyEcho = false;
   bool finite = true;
+  const bool leaveOut = anyScanHasPose(*this, source);
   for (const Scan& s : scans)
     forEachPoint(
-        *this, s, source,
+        *this, s, source, leaveOut,
         [&](const Position& p) {
           finite = finite && p.allFinite();
           lo = lo.cwiseMin(p);
@@ -112,7 +120,7 @@ GridSpec Dataset::fittingGrid(PoseSource source, double cellSize, double margin)
       bool unused = false;
       for (std::size_t i = 0; i < scans.size(); ++i)
         forEachPoint(
-            *this, scans[i], source,
+            *this, scans[i], source, leaveOut,
             [&](const Position& p) {
               const double d = (p - middle).cwiseAbs().maxCoeff();
               if (d > worstDistance) {
@@ -131,7 +139,7 @@ GridSpec Dataset::fittingGrid(PoseSource source, double cellSize, double margin)
     std::optional<Position> bad;
     bool unused = false;
     forEachPoint(
-        *this, scans[i], source,
+        *this, scans[i], source, leaveOut,
         [&](const Position& p) {
           if (!bad && !p.allFinite()) bad = p;
         },

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "sonargrid/data/scan_poses.h"
+
 namespace sg {
 
 namespace {
@@ -30,8 +32,8 @@ CellTrace traceCell(const Dataset& dataset, const GridSpec& grid, const MapperSe
         << grid.height << " grid";
     throw CellTraceError(msg.str());
   }
-  if (settings.pose == PoseSource::Truth && !dataset.hasTruth())
-    throw MapperError("the log has no true pose for every scan; map with odometry (--pose odom)");
+  if (settings.pose == PoseSource::Truth && !anyScanHasPose(dataset, PoseSource::Truth))
+    throw MapperError(std::string(kNoTruePose) + "; map with odometry (--pose odom)");
   // The map's own model, rule, parameters and cone tables: the footprints below are the ones
   // mapDataset folds in, cell for cell.
   const Mapper mapper(dataset.ring, grid, settings);
@@ -60,6 +62,7 @@ CellTrace traceCell(const Dataset& dataset, const GridSpec& grid, const MapperSe
   Footprint part;
   for (std::size_t s = 0; s < dataset.scans.size(); ++s) {
     const Scan& scan = dataset.scans[s];
+    if (!hasPose(scan, settings.pose)) continue;  // left out of the map (scan_poses.h)
     const Pose2D& robot = dataset.pose(scan, settings.pose);
     for (const Reading& r : scan.readings) {
       if (r.time > until) continue;

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "sonargrid/base/concurrency.h"
+#include "sonargrid/data/scan_poses.h"
 #include "sonargrid/engine/row_bands.h"
 
 namespace sg {
@@ -134,8 +135,8 @@ void Mapper::beginWriting() {
 }
 
 void Mapper::integrate(const Scan& scan, double until) {
-  const Pose2D& robot =
-      settings_.pose == PoseSource::Truth && scan.truth ? *scan.truth : scan.odometry;
+  if (!hasPose(scan, settings_.pose)) return;  // left out (scan_poses.h)
+  const Pose2D& robot = settings_.pose == PoseSource::Truth ? *scan.truth : scan.odometry;
   bool writing = false;  // a scan with nothing up to `until` leaves shared cells shared
   const Eigen::Matrix2d rotation = robot.rotation();
   for (const Reading& r : scan.readings) {
@@ -151,8 +152,8 @@ void Mapper::integrate(const Scan& scan, double until) {
 }
 
 bool Mapper::mapDataset(const Dataset& dataset, double until, const std::atomic<bool>* cancel) {
-  if (settings_.pose == PoseSource::Truth && !dataset.hasTruth()) {
-    throw MapperError("the log has no true pose for every scan; map with odometry (--pose odom)");
+  if (settings_.pose == PoseSource::Truth && !anyScanHasPose(dataset, PoseSource::Truth)) {
+    throw MapperError(std::string(kNoTruePose) + "; map with odometry (--pose odom)");
   }
   reset();
   // Where each scan's beams start: the readings up to `until` of the scans before it.
@@ -160,7 +161,8 @@ bool Mapper::mapDataset(const Dataset& dataset, double until, const std::atomic<
   std::vector<std::size_t> first(scans.size() + 1, 0);
   for (std::size_t k = 0; k < scans.size(); ++k) {
     std::size_t kept = 0;
-    for (const Reading& r : scans[k].readings) kept += r.time <= until ? 1 : 0;
+    if (hasPose(scans[k], settings_.pose))  // else left out (scan_poses.h)
+      for (const Reading& r : scans[k].readings) kept += r.time <= until ? 1 : 0;
     first[k + 1] = first[k] + kept;
   }
   // Each beam is its reading's own (a sine and a cosine of the robot's heading): a large log's
@@ -172,6 +174,7 @@ bool Mapper::mapDataset(const Dataset& dataset, double until, const std::atomic<
     const std::size_t begin = scans.size() * part / parts;
     const std::size_t end = scans.size() * (part + 1) / parts;
     for (std::size_t k = begin; k < end; ++k) {
+      if (!hasPose(scans[k], settings_.pose)) continue;
       const Pose2D& robot = dataset.pose(scans[k], settings_.pose);
       const Eigen::Matrix2d rotation = robot.rotation();
       Beam* out = beams.data() + first[k];
@@ -588,10 +591,7 @@ bool Mapper::reserve(const Position& lo, const Position& hi) {
 bool Mapper::append(std::span<const Scan> scans, double until, const std::atomic<bool>* cancel) {
   std::vector<Beam> beams;
   for (const Scan& scan : scans) {
-    if (settings_.pose == PoseSource::Truth && !scan.truth) {
-      throw MapperError("the scan at t = " + std::to_string(scan.time) +
-                        " s has no true pose; map with odometry (--pose odom)");
-    }
+    if (!hasPose(scan, settings_.pose)) continue;  // left out, as mapDataset() leaves it out
     const Pose2D& robot = settings_.pose == PoseSource::Truth ? *scan.truth : scan.odometry;
     if (!robot.position.allFinite() || !std::isfinite(robot.heading)) {
       throw MapperError("the scan at t = " + std::to_string(scan.time) +

@@ -93,7 +93,9 @@ class Mapper {
   // MapperError when a reading names a sonar the ring does not have.
   void integrate(const Scan& scan, double until = std::numeric_limits<double>::infinity());
 
-  // Batch mapping: resets, then integrates every scan (readings up to `until`). Checks `cancel`
+  // Batch mapping: resets, then integrates every scan (readings up to `until`); with
+  // PoseSource::Truth, every scan that has a true pose (the others are left out, and a log without
+  // any is a MapperError: data/scan_poses.h). Checks `cancel`
   // every few hundred readings; returns false when it was cancelled (the grid is then unfinished:
   // map again or reset before using it). A large log is mapped on the thread policy's threads
   // (concurrency.h), each thread with its own grid rows (row_bands.h; HIMM's axis: chunks of
@@ -109,10 +111,10 @@ class Mapper {
   // up to `until` (the model's reach around each sensor), then integrates them in order, on several
   // threads for a large batch as mapDataset() does. Appending a log's scans in any number of
   // batches gives, bit for bit, what mapDataset() of all of them gives on the grid's final limits.
-  // With PoseSource::Truth every scan must have a true pose. Returns false when `cancel` stopped it
-  // part-way (then map again or reset). Throws MapperError for a reading naming a sonar the ring
-  // does not have, a scan without the pose asked for, a grid that would pass kMaxGridCells, or an
-  // observer when the grid must grow (it counts cells of the old limits).
+  // With PoseSource::Truth a scan without a true pose is left out, as mapDataset() leaves it out
+  // (data/scan_poses.h). Returns false when `cancel` stopped it part-way (then map again or reset).
+  // Throws MapperError for a reading naming a sonar the ring does not have, a grid that would pass
+  // kMaxGridCells, or an observer when the grid must grow (it counts cells of the old limits).
   bool append(std::span<const Scan> scans, double until = std::numeric_limits<double>::infinity(),
               const std::atomic<bool>* cancel = nullptr);
   // Grows the grid, if it must, to cover the world box [lo, hi] (as append() grows it). Returns

@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "sonargrid/base/concurrency.h"
+#include "sonargrid/data/scan_poses.h"
 #include "sonargrid/engine/mapper.h"
 #include "sonargrid/models/cone_raster.h"
 #include "sonargrid/models/parameterized_shape.h"
@@ -78,7 +79,8 @@ std::vector<Beam> beamsOf(const Dataset& run, PoseSource pose) {
   std::vector<Beam> beams;
   beams.reserve(run.readingCount());
   for (const Scan& scan : run.scans) {
-    const Pose2D& robot = pose == PoseSource::Truth && scan.truth ? *scan.truth : scan.odometry;
+    if (!hasPose(scan, pose)) continue;  // left out, as the mapper leaves it out (scan_poses.h)
+    const Pose2D& robot = pose == PoseSource::Truth ? *scan.truth : scan.odometry;
     for (const Reading& r : scan.readings) {
       if (r.sonar >= run.ring.size()) {
         throw MapperError("reading names sonar " + std::to_string(r.sonar) + " but the ring has " +

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "sonargrid/base/concurrency.h"
+#include "sonargrid/data/scan_poses.h"
 #include "sonargrid/engine/mapper.h"
 #include "sonargrid/sweep/batch_evaluation.h"
 
@@ -62,8 +63,8 @@ void checkSetEvaluationInput(const SetEvaluationInput& in) {
   if (!in.measures.reference.empty() && !in.reference)
     throw std::invalid_argument("reference metrics need a reference map");
   for (const Dataset* d : {in.run, in.secondRun}) {
-    if (d && in.settings.pose == PoseSource::Truth && !d->hasTruth())
-      throw MapperError("the log has no true pose for every scan; map with odometry (--pose odom)");
+    if (d && in.settings.pose == PoseSource::Truth && !anyScanHasPose(*d, PoseSource::Truth))
+      throw MapperError(std::string(kNoTruePose) + "; map with odometry (--pose odom)");
   }
 }
 
