@@ -228,6 +228,15 @@ void BagImportDialog::update() {
       preview_ = bag::previewBag(path_.toStdString(), o, kPreviewSeconds, report);
     } catch (const std::exception& e) {
       error_ = QString::fromUtf8(e.what());
+      // The core speaks the CLI's flags; here the ring is chosen above.
+      bool cloud = false;
+      for (const bag::Topic& t : overview_.topics)
+        for (const std::string& s : o.topics.sonar)
+          cloud = cloud || (t.name == s && bag::messageType(t.type) != MessageType::Range);
+      if (cloud && !o.ring)
+        error_ = tr("Choose the robot under Sonar ring: point clouds carry no sonar geometry "
+                    "(p3dx for a Pioneer 3-DX under RosAria).\n") +
+                 error_;
     }
   }
   fillPreview();

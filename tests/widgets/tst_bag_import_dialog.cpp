@@ -101,6 +101,8 @@ class TstBagImportDialog : public QObject {
     const QString path = kBags + QStringLiteral("rosaria-room.bag");
     ui::BagImportDialog d(path, bag::inspectBag(path.toStdString()));
     QVERIFY(!d.previewParses());
+    QVERIFY2(d.result().startsWith(QStringLiteral("Choose the robot under Sonar ring")),
+             qPrintable(d.result()));
     QVERIFY2(d.result().contains(QStringLiteral("rosaria-room.bag")), qPrintable(d.result()));
     QVERIFY(!d.options().has_value());
     d.setRobotPreset(QStringLiteral("p3dx"));
