@@ -161,7 +161,20 @@ void GridView::setRobotAt(const Dataset* dataset, PoseSource pose, std::size_t s
     placeRobot(scene_, *dataset, pose, scan);
   else
     placeRobot(scene_, Dataset{}, pose, 0);
+  if (followsRobot() && !followFit_ && scene_.robot && width() > 0 && height() > 0) {
+    const QPointF at = view_.toPixel(scene_.robot->position, size());
+    const double mx = width() / 6.0, my = height() / 6.0;
+    if (at.x() < mx || at.x() > width() - mx || at.y() < my || at.y() > height() - my) {
+      view_.centre = scene_.robot->position;
+      emit viewChanged();
+    }
+  }
   refresh(false);
+}
+
+void GridView::setFollowRobot(bool on) {
+  if (on && !followRobot_) pannedAway_ = false;
+  followRobot_ = on;
 }
 
 void GridView::setHighlightedSonar(std::optional<std::size_t> sonar) {
@@ -225,6 +238,7 @@ void GridView::fitToMap() {
   if (!scene_.map) return;
   view_ = fittedView();
   followFit_ = true;
+  pannedAway_ = false;
   refresh(false);
   emit viewChanged();
 }
@@ -241,6 +255,7 @@ void GridView::zoomAt(double factor, const QPointF& pixel) {
 }
 
 void GridView::panBy(const QPointF& pixels) {
+  if (followRobot_) pannedAway_ = true;
   ViewTransform t = view_;
   t.centre -= Position(pixels.x() / t.pixelsPerMetre, -pixels.y() / t.pixelsPerMetre);
   setView(t);

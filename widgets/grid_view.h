@@ -36,8 +36,14 @@ class GridView : public QWidget {
   void setMap(std::shared_ptr<const OccupancyMap> map);
   std::shared_ptr<const OccupancyMap> map() const { return scene_.map; }
   void setReferenceLines(std::vector<std::vector<Position>> lines);
-  // The robot, ring, beams and path at scan `scan` of `dataset` (nothing when it is null).
+  // The robot, ring, beams and path at scan `scan` of `dataset` (nothing when it is null). While
+  // the view follows the robot (setFollowRobot) and is not fitted to the whole map, a robot that
+  // nears the view's edge (within a sixth of it) is brought back to its centre, at the same zoom.
   void setRobotAt(const Dataset* dataset, PoseSource pose, std::size_t scan);
+  // Follow the robot (a live map at its live edge) until the user pans away; turning it on again
+  // after it was off, or fitting the map, forgets a pan away.
+  void setFollowRobot(bool on);
+  bool followsRobot() const { return followRobot_ && !pannedAway_; }
   // Draws this sonar's beam of the current scan highlighted (nullopt: none).
   void setHighlightedSonar(std::optional<std::size_t> sonar);
   // The D_min tint of the map on `spec` (dmin_overlay.h), drawn while Overlay::Dmin is on and the
@@ -115,6 +121,8 @@ class GridView : public QWidget {
   Overlays overlays_ = kAllOverlays;
   ViewTransform view_;
   bool followFit_ = true;  // refit on resize until the user pans or zooms
+  bool followRobot_ = false;
+  bool pannedAway_ = false;  // panned while following the robot: it is no longer followed
   FocusArea focus_;
   QString nativeName_;
   QPointF dragFrom_;

@@ -87,6 +87,7 @@ void MainWindow::showCurrentScan() {
   const PoseSource pose = document_->mapperSettings().pose;
   scanShownPose_ = pose;
   const std::size_t scan = timeline_->currentScan();
+  view_->setFollowRobot(false);  // a loaded log's robot is where the timeline puts it
   view_->setRobotAt(run, pose, scan);
   view_->setHighlightedSonar(
       beamDock_->showReadings(run->scans[scan].readings, run->ring.maxRange));

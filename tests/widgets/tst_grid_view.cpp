@@ -175,6 +175,53 @@ class TestGridView : public QObject {
     QCOMPARE(view.view(), zoomed);
   }
 
+  void followsTheRobotUntilPannedAway() {
+    // A live map at its live edge (RobotSession): zoomed in, the view brings a robot that nears
+    // its edge back to the centre; after a pan it stays where the user put it; fitting the map
+    // (or turning the follow on again) follows again.
+    Dataset d;
+    d.ring = SonarRing::pioneer3dx();
+    for (const double x : {3.0, 7.5, 7.6, -1.5}) {
+      Scan s;
+      s.odometry = Pose2D(x, 1.5, 0.0);
+      d.scans.push_back(s);
+    }
+    GridView view;
+    view.resize(400, 300);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    view.setMap(markedMap());  // fitted: centre (3, 1.5), 37.6 px/m
+    view.setFollowRobot(true);
+    QVERIFY(view.followsRobot());
+    view.setRobotAt(&d, PoseSource::Odometry, 1);
+    QCOMPARE(view.view().centre, Position(3.0, 1.5));  // fitted to the map: the robot is in it
+    view.zoomAt(4.0, QPointF(200, 150));  // 150.4 px/m about the centre: x in [1.67, 4.33]
+    QCOMPARE(view.view().centre, Position(3.0, 1.5));
+    view.setRobotAt(&d, PoseSource::Odometry, 0);  // x = 3: in the middle, nothing moves
+    QCOMPARE(view.view().centre, Position(3.0, 1.5));
+    view.setRobotAt(&d, PoseSource::Odometry, 1);  // x = 7.5: outside, recentred on it
+    QCOMPARE(view.view().centre, Position(7.5, 1.5));
+    QCOMPARE(view.view().pixelsPerMetre, 150.4);
+    // 0.1 m further is 15 px from the centre, well inside: the view stays.
+    view.setRobotAt(&d, PoseSource::Odometry, 2);
+    QCOMPARE(view.view().centre, Position(7.5, 1.5));
+    view.panBy(QPointF(40, 0));  // the user looks elsewhere
+    QVERIFY(!view.followsRobot());
+    const ViewTransform panned = view.view();
+    view.setRobotAt(&d, PoseSource::Odometry, 3);  // x = -1.5: far outside, but not followed
+    QCOMPARE(view.view(), panned);
+    view.setFollowRobot(true);  // still on: the pan is remembered
+    QVERIFY(!view.followsRobot());
+    view.setFollowRobot(false);  // behind the live edge, then back to it: followed again
+    view.setFollowRobot(true);
+    QVERIFY(view.followsRobot());
+    view.setRobotAt(&d, PoseSource::Odometry, 3);
+    QCOMPARE(view.view().centre, Position(-1.5, 1.5));
+    view.panBy(QPointF(-40, 0));
+    view.fitToMap();  // fitting forgets the pan as well
+    QVERIFY(view.followsRobot());
+  }
+
   void overlayToggles() {
     GridView view;
     view.setOverlays({});

@@ -243,6 +243,8 @@ void RobotSession::onTimeChanged(double t, std::size_t scan) {
 
 void RobotSession::showRobot(std::size_t scan) {
   if (!view_ || scan >= shown_.scans.size()) return;
+  // At the live edge the view keeps the robot in sight, until the user pans away.
+  view_->setFollowRobot(!timeline_ || timeline_->atEnd());
   view_->setRobotAt(&shown_, remap_->settings().pose, scan);
 }
 
