@@ -81,6 +81,25 @@ int syncRetrying(int fd) {
   return rc;
 }
 
+// Writes all of `bytes` to `fd` (a short write, or one a signal interrupts, continues where it
+// stopped); returns why it could not, or nothing.
+std::string writeWhole(int fd, std::string_view bytes) {
+  const char* data = bytes.data();
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, data, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return osReason(errno);
+    }
+    // write() of a positive count does not return 0 on a file; do not spin if it ever does.
+    if (n == 0) return "the system accepted no bytes";
+    data += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  return {};
+}
+
 // Makes a new or renamed file's name in `folder` durable. A folder we may not open for reading
 // (write and search permission only) cannot be synced by us; file systems that cannot sync a
 // folder say EINVAL. `what` starts the message: what is in place although the folder is not synced.
@@ -131,23 +150,9 @@ void FileSink::flush() {
 }
 
 void FileSink::writeAll(std::string_view bytes) {
-  const char* data = bytes.data();
-  std::size_t left = bytes.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd_, data, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throw FileWriteError(
-          path_, "cannot write the temporary file '" + temporary_ + "': " + osReason(errno));
-    }
-    if (n == 0) {
-      // write() of a positive count does not return 0 on a file; do not spin if it ever does.
-      throw FileWriteError(path_, "cannot write the temporary file '" + temporary_ +
-                                      "': the system accepted no bytes");
-    }
-    data += n;  // a short write (a signal, a full pipe) continues where it stopped
-    left -= static_cast<std::size_t>(n);
-  }
+  const std::string reason = writeWhole(fd_, bytes);
+  if (!reason.empty())
+    throw FileWriteError(path_, "cannot write the temporary file '" + temporary_ + "': " + reason);
 }
 
 // One write from start to finish: the temporary file's descriptor and name, removed again unless
@@ -274,17 +279,8 @@ AppendFile::~AppendFile() {
 
 void AppendFile::append(std::string_view bytes) {
   if (fd_ < 0) throw FileWriteError(path_, "the file is closed");
-  const char* p = bytes.data();
-  std::size_t left = bytes.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd_, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throw FileWriteError(path_, osReason(errno));
-    }
-    p += n;
-    left -= static_cast<std::size_t>(n);
-  }
+  const std::string reason = writeWhole(fd_, bytes);
+  if (!reason.empty()) throw FileWriteError(path_, reason);
 }
 
 void AppendFile::sync() {
