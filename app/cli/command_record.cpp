@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "signal_watcher.h"
 #include "sonargrid/io/sglog_recorder.h"
+#include "sonargrid/io/start_pose.h"
 #include "sonargrid/live/robot_link.h"
 #include "sonargrid/live/wander.h"
 
@@ -71,6 +72,12 @@ int runRecord(Arguments& args) {
   const bool wander = args.flag("--wander");
   const std::optional<std::string> robotName = args.value("--robot");
   const bool json = args.flag("--json");
+  std::optional<Pose2D> startPose;
+  if (const auto start = args.value("--start-pose")) {
+    std::string why;
+    startPose = parseStartPose(*start, &why);
+    if (!startPose) throw UsageError("--start-pose: " + why);
+  }
   args.finish();
 
   live::LinkAddress address;
@@ -127,7 +134,7 @@ int runRecord(Arguments& args) {
                                    " (" + cls.toStdString() + " " + sub.toStdString() + ")";
                      header.ring = robot.ring;
                      try {
-                       log = std::make_unique<SglogRecorder>(outPath, header);
+                       log = std::make_unique<SglogRecorder>(outPath, header, 1.0, startPose);
                      } catch (const std::exception& e) {
                        fail(e.what());
                        return;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The log-reading flags every command that reads a log shares (docs/cli.md, "Reading logs"):
-// --format, --lenient, --robot, --columns, --poses, and a bag's --sonar-topic, --odom-topic and
-// --truth-topic.
+// --format, --lenient, --robot, --columns, --poses, --start-pose, and a bag's --sonar-topic,
+// --odom-topic and --truth-topic.
 
 #include <algorithm>
 #include <filesystem>
@@ -11,6 +11,7 @@
 #include "map_options.h"
 #include "sonargrid/io/csv_log.h"
 #include "sonargrid/io/log_reader.h"
+#include "sonargrid/io/start_pose.h"
 
 namespace sg::cli {
 
@@ -48,6 +49,11 @@ LogOptions parseLogOptions(Arguments& args) {
     }
   }
   if (const auto poses = args.value("--poses")) o.posesPath = *poses;
+  if (const auto start = args.value("--start-pose")) {
+    std::string why;
+    o.startPose = parseStartPose(*start, &why);
+    if (!o.startPose) throw UsageError("--start-pose: " + why);
+  }
   // Repeated, or a comma-separated list: one topic per transducer, or one for them all.
   for (const std::string& v : args.values("--sonar-topic")) {
     std::size_t start = 0;

@@ -50,7 +50,7 @@ commands:
       [--seed N] [--drift on|off] [--duration S] [--time-scale K] [--log-out LOG.sglog]
                              serve a virtual robot over ARCOS (TCP), one client at a time
   record --connect tcp://HOST[:PORT]|serial://DEVICE[?baud=N] --out LOG.sglog
-      [--duration S] [--wander] [--robot p3dx|amigobot] [--json]
+      [--duration S] [--wander] [--robot p3dx|amigobot] [--start-pose X,Y,THETA] [--json]
                              record a live robot's sonar to a log as it streams
   sweep --log FILE [--second-log FILE] [--reference REF] [map flags]
       --grid "P=FROM:STEP:TO" | --grid "P=V1,V2,..." ... [--tie "P=1-Q"]...
@@ -79,6 +79,8 @@ commands:
 log flags (every command that reads a log):
   --format auto|sglog|carmen|player|csv   --lenient   --robot PRESET|GEOMETRY_FILE
   --columns SPEC   --poses FILE           (docs/formats.md)
+  --start-pose X,Y,THETA   the robot's pose at the first scan in the reference's frame
+                           (metres, metres, degrees): the odometry is moved there
 
 threads (map, score --log, compare, goodness, reproduce, sweep, bench): --threads N, else the
   environment variable SONARGRID_THREADS, else the CPUs the process may use (its affinity mask);

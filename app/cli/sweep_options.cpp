@@ -22,9 +22,12 @@ SweepOptions parseSweepOptions(Arguments& args, const std::vector<std::string>& 
     // The log-reading flags as written, before parseMapOptions consumes them: they decide how the
     // log reads, so they belong in the sweep's fingerprint.
     Arguments probe = args;
-    for (const char* flag : {"--format", "--robot", "--columns", "--poses"}) {
+    for (const char* flag : {"--format", "--robot", "--columns", "--poses", "--start-pose",
+                             "--odom-topic", "--truth-topic"}) {
       if (const auto v = probe.value(flag)) o.logFlags.emplace_back(flag, *v);
     }
+    for (const std::string& v : probe.values("--sonar-topic"))
+      o.logFlags.emplace_back("--sonar-topic", v);
     if (probe.flag("--lenient")) o.logFlags.emplace_back("--lenient", "yes");
   }
   o.map = parseMapOptions(args);

@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "sonargrid/base/atomic_file.h"
@@ -29,6 +30,8 @@
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/io/csv_log.h"
 #include "sonargrid/io/log_reader.h"
+#include "sonargrid/io/start_pose.h"
+#include "sonargrid/io/text_lines.h"
 #include "sonargrid/metrics/derivative_noise.h"
 #include "sonargrid/metrics/map_entropy.h"
 #include "sonargrid/metrics/reference_score.h"
@@ -191,7 +194,8 @@ py::array_t<double> poseArray(const std::vector<const Pose2D*>& poses) {
 
 Log readLogPy(const py::object& file, const std::optional<std::string>& format, bool lenient,
               const std::optional<py::object>& robot, const std::optional<std::string>& columns,
-              const std::optional<py::object>& poses) {
+              const std::optional<py::object>& poses,
+              const std::optional<std::tuple<double, double, double>>& startPose) {
   const std::string path = pathOf(file);
   LogOptions o;
   if (format && !parseLogFormat(*format, o.format))
@@ -215,6 +219,14 @@ Log readLogPy(const py::object& file, const std::optional<std::string>& format, 
   if (poses) {
     if (!columns) throw py::value_error("poses= needs columns= (it describes CSV logs)");
     o.posesPath = pathOf(*poses);
+  }
+  if (startPose) {
+    // As --start-pose: metres, metres, degrees.
+    const auto [x, y, degrees] = *startPose;
+    std::string why;
+    o.startPose =
+        parseStartPose(text::number(x) + "," + text::number(y) + "," + text::number(degrees), &why);
+    if (!o.startPose) throw py::value_error("start_pose: " + why);
   }
   auto data = std::make_shared<Dataset>();
   {
@@ -735,9 +747,10 @@ PYBIND11_MODULE(_core, m) {
 
   m.def("read_log", &readLogPy, py::arg("path"), py::kw_only(), py::arg("format") = py::none(),
         py::arg("lenient") = false, py::arg("robot") = py::none(), py::arg("columns") = py::none(),
-        py::arg("poses") = py::none(),
+        py::arg("poses") = py::none(), py::arg("start_pose") = py::none(),
         "Reads a sonar log (.sglog, CARMEN, Player, CSV); sonargrid.LogError names file, line and "
-        "field of malformed input");
+        "field of malformed input. start_pose=(x, y, degrees): the robot's pose at the first scan "
+        "in the reference's frame, where the odometry is moved (as --start-pose)");
   m.def("map", &mapPy, py::arg("log"), py::kw_only(), py::arg("model"), py::arg("rule"),
         py::arg("cell") = 0.05, py::arg("pose") = "odom", py::arg("threads") = py::none(),
         py::arg("until") = py::none(),

@@ -388,11 +388,12 @@ void TstSglog::malformed_data() {
                                   << QByteArray(
                                          "t.sglog:5: aperture: expected one 'aperture' line, found "
                                          "a second (the first is line 4)");
-  QTest::addRow("unknown header record") << header("foo 1\n")
-                                         << QByteArray(
-                                                "t.sglog:4: expected a header record (name, robot, "
-                                                "aperture, min_range, max_range, sonar or "
-                                                "end_header), found 'foo'");
+  QTest::addRow("unknown header record")
+      << header("foo 1\n")
+      << QByteArray(
+             "t.sglog:4: expected a header record (name, robot, "
+             "aperture, min_range, max_range, sonar, start_pose or "
+             "end_header), found 'foo'");
   QTest::addRow("aperture nan") << header("aperture nan\n")
                                 << QByteArray(
                                        "t.sglog:4: aperture: expected an angle in radians > 0 and "
@@ -583,7 +584,7 @@ void TstSglog::malformed_data() {
   QTest::addRow("end in the header") << QByteArray("sglog 1\nend\n")
                                      << QByteArray(
                                             "t.sglog:2: expected a header record (name, robot, "
-                                            "aperture, min_range, max_range, sonar or "
+                                            "aperture, min_range, max_range, sonar, start_pose or "
                                             "end_header), found 'end'");
 }
 

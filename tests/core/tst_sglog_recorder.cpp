@@ -7,13 +7,16 @@
 #include <QFile>
 #include <QTemporaryDir>
 #include <QtTest>
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 #include <string>
 
 #include "sonargrid/io/log_options.h"
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/io/sglog_recorder.h"
+#include "sonargrid/io/start_pose.h"
 #include "sonargrid/io/text_lines.h"
 
 namespace {
@@ -198,6 +201,100 @@ class TstSglogRecorder : public QObject {
     rec.finish();
     QCOMPARE(sg::readSglog(path.toStdString()).scans.size(), std::size_t{1});
     QVERIFY_THROWS_EXCEPTION(std::runtime_error, rec.append(d.scans[7]));
+  }
+
+  // Issue 50, item 8: the start pose. Worked by hand: the robot's odometry says (1, 2) m facing
+  // +y (90 degrees), then (1, 3) m: one metre ahead. Started at (5, 5) m facing +x, that metre is
+  // along +x: (6, 5) m, heading 0. The true pose is already in the map's frame and stays.
+  void placingMovesThePathRigidly() {
+    sg::Dataset d;
+    d.ring = sg::SonarRing::amigobot();
+    const double quarter = std::numbers::pi / 2;
+    d.scans.resize(2);
+    d.scans[0].odometry = sg::Pose2D(1.0, 2.0, quarter);
+    d.scans[1].odometry = sg::Pose2D(1.0, 3.0, quarter);
+    d.scans[1].time = 1.0;
+    d.scans[1].truth = sg::Pose2D(7.0, 7.0, 1.0);
+    sg::placeOdometryAt(d, sg::Pose2D(5.0, 5.0, 0.0));
+    QCOMPARE(d.scans[0].odometry, sg::Pose2D(5.0, 5.0, 0.0));
+    QVERIFY(std::abs(d.scans[1].odometry.x() - 6.0) < 1e-15);
+    QVERIFY(std::abs(d.scans[1].odometry.y() - 5.0) < 1e-15);
+    QCOMPARE(d.scans[1].odometry.heading, 0.0);
+    QCOMPARE(*d.scans[1].truth, sg::Pose2D(7.0, 7.0, 1.0));
+
+    std::string why;
+    const auto p = sg::parseStartPose("5,-2.5,90", &why);
+    QVERIFY2(p.has_value(), why.c_str());
+    QCOMPARE(*p, sg::Pose2D(5.0, -2.5, sg::wrapAngle(quarter)));
+    QVERIFY(!sg::parseStartPose("5,2", &why));
+    QCOMPARE(why, std::string("expected X,Y,THETA (metres, metres, degrees), found '5,2'"));
+    QVERIFY(!sg::parseStartPose("5,nan,0", &why));
+    QCOMPARE(why, std::string("expected a number for Y in X,Y,THETA, found 'nan'"));
+    QVERIFY(!sg::parseStartPose("5,2,720", &why));
+    QCOMPARE(why, std::string("expected THETA in degrees between -360 and 360, found '720'"));
+  }
+
+  // A recording that knows where the robot started writes it in the header ('start_pose', docs/
+  // formats.md); the reader places the odometry there, and LogOptions::startPose overrides it.
+  void aRecordedStartPosePlacesTheLog() {
+    QTemporaryDir dir;
+    const QString path = dir.filePath("live.sglog");
+    const sg::Dataset d = sample();  // its first odometry is (0, 0, 0)
+    const sg::Pose2D start(5.0, 4.0, 0.0);
+    {
+      sg::SglogRecorder rec(path.toStdString(), d, 1.0, start);
+      for (const sg::Scan& s : d.scans) rec.append(s);
+      rec.finish();
+    }
+    QVERIFY(readFile(path).find("\nstart_pose 5 4 0\nstreamed\nend_header\n") != std::string::npos);
+    const sg::Dataset read = sg::readSglog(path.toStdString());
+    QCOMPARE(read.scans.size(), d.scans.size());
+    // Heading 0 at a first odometry of heading 0: the path is shifted by (5, 4) m, by hand.
+    for (std::size_t i = 0; i < d.scans.size(); ++i) {
+      QCOMPARE(read.scans[i].odometry.x(), d.scans[i].odometry.x() + 5.0);
+      QCOMPARE(read.scans[i].odometry.y(), d.scans[i].odometry.y() + 4.0);
+      QCOMPARE(read.scans[i].odometry.heading, d.scans[i].odometry.heading);
+      QCOMPARE(read.scans[i].truth, d.scans[i].truth);
+      QCOMPARE(read.scans[i].readings, d.scans[i].readings);
+    }
+    sg::LogOptions o;
+    o.startPose = sg::Pose2D(0.0, 0.0, 0.0);
+    sg::LoadReport report;
+    const std::string text = readFile(path);
+    sg::text::MemorySource source(text);
+    QCOMPARE(sg::readSglog(source, "t.sglog", o, report).scans, d.scans);
+  }
+
+  void startPoseErrorsNameTheLine() {
+    sg::Dataset d = sample();
+    std::string text = sg::sglogHeaderText(d, false, sg::Pose2D(1.0, 2.0, 0.5));
+    const std::size_t at = text.find("start_pose");
+    QVERIFY(at != std::string::npos);
+    const std::size_t line =
+        static_cast<std::size_t>(std::count(text.begin(), text.begin() + at, '\n')) + 1;
+    auto errorOf = [](const std::string& t) -> QString {
+      sg::LoadReport report;
+      try {
+        parse(t, report);
+      } catch (const sg::LogError& e) {
+        return QString(e.what());
+      }
+      return "no error";
+    };
+    std::string twice = text;
+    twice.insert(at, "start_pose 0 0 0\n");
+    QCOMPARE(errorOf(twice + "end\n"),
+             QString("t.sglog:%1: start_pose: expected one 'start_pose' line, found a second (the "
+                     "first is line %2)")
+                 .arg(line + 1)
+                 .arg(line));
+    std::string bad = text;
+    bad.replace(at, std::string("start_pose 1 2").size(), "start_pose 1 north");
+    QCOMPARE(
+        errorOf(bad + "end\n"),
+        QString("t.sglog:%1: start_pose y: expected a number of metres, found 'north'").arg(line));
+    QVERIFY_THROWS_EXCEPTION(std::runtime_error,
+                             sg::sglogHeaderText(d, false, sg::Pose2D(NAN, 0.0, 0.0)));
   }
 
   void unwritablePathNamesIt() {

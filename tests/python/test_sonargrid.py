@@ -183,6 +183,27 @@ def test_exports_equal_the_cli_files(room, cli, datasets, tmp_path):
     assert (tmp_path / "py.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_start_pose_places_the_odometry_as_the_cli(cli, datasets, tmp_path):
+    # The room log with its odometry starting at (0, 0, 0), as a robot switched on where it stood
+    # records it (convert --start-pose 0,0,0); its first true pose is (1.5 m, 1 m, 0), and there
+    # its odometry is the true pose again (the room's odometry equals its true pose).
+    zero = tmp_path / "room-from-zero.sglog"
+    cli("convert", "--in", datasets / "room" / "room.sglog", "--out", zero, "--start-pose", "0,0,0",
+        json_output=False)
+    log = sonargrid.read_log(zero)
+    assert tuple(log.odometry[0]) == (0.0, 0.0, 0.0)
+    placed = sonargrid.read_log(zero, start_pose=(1.5, 1.0, 0.0))
+    assert tuple(placed.odometry[0]) == (1.5, 1.0, 0.0)
+    assert np.max(np.abs(placed.odometry - placed.truth)) < 1e-12
+    ref = sonargrid.read_reference(datasets / "room" / "room.json")
+    got = sonargrid.score(sonargrid.map(placed, model="himm", rule="himm"), ref)
+    want = cli("score", "--log", zero, "--start-pose", "1.5,1,0", "--reference",
+               datasets / "room" / "room.json", "--model", "himm", "--rule", "himm", "--json")
+    assert got["iop_mm"] == want["iop_mm"]
+    with pytest.raises(ValueError, match="start_pose: expected THETA in degrees"):
+        sonargrid.read_log(zero, start_pose=(0.0, 0.0, 400.0))
+
+
 def test_errors_carry_the_core_message(room, tmp_path):
     missing = tmp_path / "nothing.sglog"
     with pytest.raises(sonargrid.LogError, match=re.escape(str(missing))):

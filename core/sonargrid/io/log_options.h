@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "sonargrid/base/log_error.h"
+#include "sonargrid/data/pose.h"
 #include "sonargrid/data/sonar_ring.h"
 #include "sonargrid/io/csv_layout.h"
 
@@ -56,6 +57,10 @@ struct LogOptions {
   std::string posesPath;
   // ROS bags: the topics to read (empty: the bag's obvious ones, reported in LoadReport::notes).
   BagTopics topics;
+  // The robot's pose at the log's first scan in the map's frame (start_pose.h): the odometry is
+  // moved there. Overrides a .sglog's own start_pose; nullopt keeps the log's (a .sglog's, else
+  // the odometry as logged).
+  std::optional<Pose2D> startPose;
 
   // Called after each block read (bytes read so far, file size or 0 when unknown), from the
   // loading thread.

@@ -11,6 +11,7 @@
 #include "sonargrid/io/csv_log.h"
 #include "sonargrid/io/player.h"
 #include "sonargrid/io/sglog.h"
+#include "sonargrid/io/start_pose.h"
 #include "sonargrid/io/text_lines.h"
 
 namespace sg {
@@ -37,21 +38,28 @@ bool isWord(std::string_view s) {
   return !(s[0] >= '0' && s[0] <= '9');
 }
 
+// The odometry placed at LogOptions::startPose. The .sglog reader does it itself, since its header
+// may carry a start pose that the option overrides.
+Dataset placed(Dataset log, const LogOptions& options) {
+  if (options.startPose) placeOdometryAt(log, *options.startPose);
+  return log;
+}
+
 Dataset dispatch(LogFormat format, text::ByteSource& source, const std::string& name,
                  const LogOptions& options, LoadReport& report) {
   switch (format) {
     case LogFormat::Sglog:
       return readSglog(source, name, options, report);
     case LogFormat::Carmen:
-      return readCarmen(source, name, options, report);
+      return placed(readCarmen(source, name, options, report), options);
     case LogFormat::Player:
-      return readPlayer(source, name, options, report);
+      return placed(readPlayer(source, name, options, report), options);
     case LogFormat::Csv:
     case LogFormat::Auto:
     case LogFormat::Bag:  // read before the text source is opened (readLog, parseLog)
       break;
   }
-  return readCsvLog(source, name, options, report);
+  return placed(readCsvLog(source, name, options, report), options);
 }
 
 LogFormat chooseFormat(std::string_view head, const std::string& name, const LogOptions& options) {
@@ -150,7 +158,7 @@ Dataset readLog(const std::string& path, const LogOptions& options, LoadReport* 
     LoadReport local;
     LoadReport& r = report != nullptr ? *report : local;
     r = LoadReport{};
-    return bag::readBag(path, options, r);
+    return placed(bag::readBag(path, options, r), options);
   }
   text::FileSource source(path);
   std::string head;
@@ -180,7 +188,7 @@ Dataset parseLog(std::string_view bytes, const std::string& displayName, const L
     LoadReport local;
     LoadReport& r = report != nullptr ? *report : local;
     r = LoadReport{};
-    return bag::readBagBytes(bytes, displayName, options, r);
+    return placed(bag::readBagBytes(bytes, displayName, options, r), options);
   }
   text::MemorySource source(bytes);
   return load(source, bytes.substr(0, kDetectBytes), displayName, options, report);

@@ -17,6 +17,7 @@
 
 #include "sonargrid/base/atomic_file.h"
 #include "sonargrid/io/sglog_format.h"
+#include "sonargrid/io/start_pose.h"
 #include "sonargrid/io/text_lines.h"
 
 namespace sg {
@@ -45,13 +46,17 @@ bool isBlank(char c) {
 
 class Parser : text::LineParser {
  public:
-  using LineParser::LineParser;
+  Parser(text::ByteSource& source, const std::string& file, const LogOptions& options,
+         LoadReport& report)
+      : LineParser(source, file, options, report), startPose_(options.startPose) {}
 
   Dataset run() {
     readMagic();
     readHeader();
     readBody();
     report_.lines = lines_.lineNumber();
+    // LogOptions::startPose overrides the header's.
+    if (startPose_) placeOdometryAt(ds_, *startPose_);
     return std::move(ds_);
   }
 
@@ -142,11 +147,15 @@ class Parser : text::LineParser {
         readStreamed();
         continue;
       }
+      if (key == kStartPose) {
+        readStartPose();
+        continue;
+      }
       const auto it = std::find(kKeyNames.begin(), kKeyNames.end(), key);
       if (it == kKeyNames.end()) {
         fail("",
-             "expected a header record (name, robot, aperture, min_range, max_range, sonar or "
-             "end_header), " +
+             "expected a header record (name, robot, aperture, min_range, max_range, sonar, "
+             "start_pose or end_header), " +
                  found(key));
       }
       const auto k = static_cast<std::size_t>(it - kKeyNames.begin());
@@ -254,6 +263,19 @@ class Parser : text::LineParser {
     std::size_t n = 0;
     while (p + 1 + n != end && (static_cast<unsigned char>(p[1 + n]) & 0xC0) == 0x80) ++n;
     return n;
+  }
+
+  void readStartPose() {
+    if (startPoseLine_ != 0) {
+      fail(kStartPose, "expected one 'start_pose' line, found a second (the first is line " +
+                           std::to_string(startPoseLine_) + ")");
+    }
+    startPoseLine_ = lines_.lineNumber();
+    expectCount(3, "x y theta: the robot's pose at the first scan");
+    const double x = finite(1, "start_pose x", "a number of metres");
+    const double y = finite(2, "start_pose y", "a number of metres");
+    const double theta = finite(3, "start_pose theta", "an angle in radians");
+    if (!startPose_) startPose_.emplace(x, y, theta);  // LogOptions::startPose overrides it
   }
 
   void readMinRange() {
@@ -469,6 +491,8 @@ class Parser : text::LineParser {
   double lastTime_ = -std::numeric_limits<double>::infinity();
   std::size_t skippedScanLine_ = 0;  // the scan line being read or skipped; 0 when valid
   std::size_t streamedLine_ = 0;     // the 'streamed' header line; 0 when the log has none
+  std::size_t startPoseLine_ = 0;    // the 'start_pose' header line; 0 when the log has none
+  std::optional<Pose2D> startPose_;  // LogOptions::startPose, else the header's
 };
 
 }  // namespace

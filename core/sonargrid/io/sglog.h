@@ -5,6 +5,7 @@
 // Dataset.
 
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -30,10 +31,12 @@ Dataset readSglog(text::ByteSource& source, const std::string& displayName,
 // The pieces of a log written as it is recorded (sglog_recorder.h), formatted by the same code as
 // writeSglog. The header holds the name and ring of `header` (its scans are ignored) and, when
 // `streamed`, the 'streamed' record that lets the log end without 'end' (docs/formats.md,
-// "Streamed logs"). appendSglogScan appends one scan's lines to `out`. Both throw
-// std::runtime_error when the reader would reject what they write (a scan earlier than
-// `previousTime`, a reading naming a sonar outside `ring`, a non-finite number...).
-std::string sglogHeaderText(const Dataset& header, bool streamed);
+// "Streamed logs"), and `startPose` as the 'start_pose' record. appendSglogScan appends one scan's
+// lines to `out`. Both throw std::runtime_error when the reader would reject what they write (a
+// scan earlier than `previousTime`, a reading naming a sonar outside `ring`, a non-finite
+// number...).
+std::string sglogHeaderText(const Dataset& header, bool streamed,
+                            const std::optional<Pose2D>& startPose = std::nullopt);
 void appendSglogScan(std::string& out, const Scan& scan, const SonarRing& ring,
                      double previousTime);
 inline constexpr std::string_view kSglogEndLine = "end\n";

@@ -26,6 +26,9 @@ constexpr std::string_view kEnd = "end";
 // The optional header record of a log written as it was recorded (docs/formats.md, "Streamed
 // logs"): such a log may end without 'end', after any complete line.
 constexpr std::string_view kStreamed = "streamed";
+// The optional header record of the robot's pose at the first scan, in the map's frame
+// (docs/formats.md, "Start pose"): the reader places the odometry there (start_pose.h).
+constexpr std::string_view kStartPose = "start_pose";
 
 // ---------------------------------------------------------------------------------------------
 // Shared validity rules: the writer refuses exactly what the reader would reject, so that a file

@@ -7,14 +7,15 @@
 
 namespace sg {
 
-SglogRecorder::SglogRecorder(const std::string& path, const Dataset& header, double syncInterval)
+SglogRecorder::SglogRecorder(const std::string& path, const Dataset& header, double syncInterval,
+                             const std::optional<Pose2D>& startPose)
     : path_(path),
       ring_(header.ring),
       syncInterval_(std::chrono::duration_cast<std::chrono::steady_clock::duration>(
           std::chrono::duration<double>(syncInterval))) {
   std::string text;
   try {
-    text = sglogHeaderText(header, true);
+    text = sglogHeaderText(header, true, startPose);
   } catch (const std::runtime_error& e) {
     fail(e.what());
   }

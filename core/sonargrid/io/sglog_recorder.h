@@ -22,9 +22,12 @@ namespace sg {
 class SglogRecorder {
  public:
   // Creates `path` (replacing a file of that name), writes the header of `header` (its name and
-  // ring; its scans are ignored) and makes the file and its directory entry durable. Throws
-  // std::runtime_error naming the path when it cannot (FileWriteError for the file itself).
-  SglogRecorder(const std::string& path, const Dataset& header, double syncInterval = 1.0);
+  // ring; its scans are ignored), `startPose` (the robot's pose at the first scan in the map's
+  // frame, when known) as its 'start_pose' record, and makes the file and its directory entry
+  // durable. Throws std::runtime_error naming the path when it cannot (FileWriteError for the
+  // file itself).
+  SglogRecorder(const std::string& path, const Dataset& header, double syncInterval = 1.0,
+                const std::optional<Pose2D>& startPose = std::nullopt);
   ~SglogRecorder();
   SglogRecorder(const SglogRecorder&) = delete;
   SglogRecorder& operator=(const SglogRecorder&) = delete;

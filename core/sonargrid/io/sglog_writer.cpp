@@ -190,7 +190,8 @@ void writeQuoted(TextWriter& w, const std::string& s) {
   w << '"';
 }
 
-void writeHeader(TextWriter& w, const Dataset& d, bool streamed) {
+void writeHeader(TextWriter& w, const Dataset& d, bool streamed,
+                 const std::optional<Pose2D>& startPose = std::nullopt) {
   w << kMagic << ' ' << static_cast<std::size_t>(kSglogVersion);
   w.endLine();
   w << "# SonarGrid log; units: metres, radians, seconds; see docs/formats.md";
@@ -209,6 +210,10 @@ void writeHeader(TextWriter& w, const Dataset& d, bool streamed) {
   for (std::size_t i = 0; i < d.ring.sonars.size(); ++i) {
     const Pose2D& p = d.ring.sonars[i].pose;
     w << "sonar " << i << ' ' << p.x() << ' ' << p.y() << ' ' << p.heading;
+    w.endLine();
+  }
+  if (startPose) {
+    w << kStartPose << ' ' << startPose->x() << ' ' << startPose->y() << ' ' << startPose->heading;
     w.endLine();
   }
   if (streamed) {
@@ -252,16 +257,19 @@ void writeText(const Dataset& d, ByteSink& sink) {
 
 }  // namespace
 
-std::string sglogHeaderText(const Dataset& header, bool streamed) {
+std::string sglogHeaderText(const Dataset& header, bool streamed,
+                            const std::optional<Pose2D>& startPose) {
   try {
     checkRing(header.ring);
+    if (startPose && !(startPose->position.allFinite() && std::isfinite(startPose->heading)))
+      throw std::runtime_error("the start pose is not finite");
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(std::string("cannot write the sglog header: ") + e.what());
   }
   std::string out;
   StringSink sink(out);
   TextWriter w(sink, 0);
-  writeHeader(w, header, streamed);
+  writeHeader(w, header, streamed, startPose);
   w.flush();
   return out;
 }
