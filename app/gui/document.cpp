@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "document_commands.h"
+#include "sonargrid/io/start_pose.h"
 
 namespace sg::app {
 
@@ -19,6 +20,7 @@ void Document::restore(const ProjectState& state, bool modified) {
   state_ = state;
   state_.cellSize = std::clamp(state_.cellSize, kMinCellSize, kMaxCellSize);
   referenceLog_ = state_.reference ? state_.logPath : QString();
+  placeSource();  // the state's start pose
   undo_->clear();
   setDirty(modified);
   emit logChanged();
@@ -41,8 +43,8 @@ void Document::setLog(const QString& path, std::shared_ptr<const ScanSource> sou
   const bool changed = path != state_.logPath || reading != state_.logReading;
   state_.logPath = path;
   state_.logReading = reading;
-  source_ = std::move(source);
-  dataset_ = source_ ? source_->view() : nullptr;
+  loadedSource_ = std::move(source);
+  placeSource();
   if (changed && !projectPath_.isEmpty()) setDirty(true);
   emit logChanged();
 }
@@ -145,6 +147,23 @@ void Document::setSweep(const SweepPlan& sweep) {
   undo_->push(new SetSweepCommand(this, state_.sweep, sweep));
 }
 
+void Document::setStartPose(std::optional<Pose2D> pose) {
+  if (pose == state_.logReading.startPose) return;
+  endDrag();
+  undo_->push(new SetStartPoseCommand(this, state_.logReading.startPose, pose));
+}
+
+void Document::placeSource() {
+  source_ = loadedSource_;
+  const std::optional<Pose2D>& start = state_.logReading.startPose;
+  if (start && loadedSource_ && loadedSource_->complete()) {
+    Dataset placed = *loadedSource_->view();
+    placeOdometryAt(placed, *start);
+    source_ = std::make_shared<const ScanSource>(std::move(placed));
+  }
+  dataset_ = source_ ? source_->view() : nullptr;
+}
+
 void Document::setProjectPath(const QString& path) {
   if (path == projectPath_) return;
   projectPath_ = path;
@@ -200,6 +219,13 @@ void Document::applyPinnedRows(const std::vector<PinnedRow>& rows) {
 void Document::applySweep(const SweepPlan& sweep) {
   state_.sweep = sweep;
   emit sweepChanged();
+}
+
+void Document::applyStartPose(const std::optional<Pose2D>& pose) {
+  state_.logReading.startPose = pose;
+  placeSource();
+  emit startPoseChanged();
+  emit logChanged();
 }
 
 void Document::setDirty(bool dirty) {

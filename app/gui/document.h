@@ -53,6 +53,12 @@ class Document : public QObject {
   const LogReading& logReading() const { return state_.logReading; }
   // A log in memory: its complete source.
   void setLog(const QString& path, std::shared_ptr<const Dataset> dataset);
+  // Undoable. The robot's pose at the log's first scan in the reference's frame (nullopt: the
+  // odometry as logged), kept in logReading(): source() is then the loaded log with its odometry
+  // placed there (sonargrid/io/start_pose.h), as `--start-pose` reads it. A live log is not
+  // placed.
+  void setStartPose(std::optional<Pose2D> pose);
+  const std::optional<Pose2D>& startPose() const { return state_.logReading.startPose; }
   const QString& secondLogPath() const { return state_.secondLogPath; }
   const std::shared_ptr<const Dataset>& secondDataset() const { return secondDataset_; }
   void setSecondLog(const QString& path, std::shared_ptr<const Dataset> dataset);
@@ -117,6 +123,7 @@ class Document : public QObject {
   void applyReference(const std::optional<ReferenceMap>& map, const QString& path, bool modified);
   void applyPinnedRows(const std::vector<PinnedRow>& rows);
   void applySweep(const SweepPlan& sweep);
+  void applyStartPose(const std::optional<Pose2D>& pose);
   // The drag the newest command belongs to (0: none): commands merge only within one drag.
   quint64 dragId() const { return dragId_; }
 
@@ -130,15 +137,20 @@ class Document : public QObject {
   void viewChanged();
   void pinnedRowsChanged();
   void sweepChanged();
+  // The odometry was placed at a new start pose: source() and dataset() are new (logChanged too).
+  void startPoseChanged();
   void projectPathChanged(const QString& path);
   void modifiedChanged(bool modified);
 
  private:
   void setDirty(bool dirty);
   quint64 dragFor(bool drag);
+  // source_ and dataset_ from loadedSource_ and the start pose.
+  void placeSource();
 
   QUndoStack* undo_;
   ProjectState state_;
+  std::shared_ptr<const ScanSource> loadedSource_;  // as read, before the start pose
   std::shared_ptr<const ScanSource> source_;
   std::shared_ptr<const Dataset> dataset_;  // source_->view()
   std::shared_ptr<const Dataset> secondDataset_;

@@ -111,4 +111,18 @@ void SetSweepCommand::redo() {
   document_->applySweep(after_);
 }
 
+SetStartPoseCommand::SetStartPoseCommand(Document* document, std::optional<Pose2D> before,
+                                         std::optional<Pose2D> after)
+    : document_(document), before_(before), after_(after) {
+  setText(after ? tr("Place Start Pose") : tr("Clear Start Pose"));
+}
+
+void SetStartPoseCommand::undo() {
+  document_->applyStartPose(before_);
+}
+
+void SetStartPoseCommand::redo() {
+  document_->applyStartPose(after_);
+}
+
 }  // namespace sg::app

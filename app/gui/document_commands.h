@@ -74,6 +74,18 @@ class SetPinnedRowsCommand : public QUndoCommand {
   std::vector<PinnedRow> before_, after_;
 };
 
+class SetStartPoseCommand : public QUndoCommand {
+ public:
+  SetStartPoseCommand(Document* document, std::optional<Pose2D> before,
+                      std::optional<Pose2D> after);
+  void undo() override;
+  void redo() override;
+
+ private:
+  Document* document_;
+  std::optional<Pose2D> before_, after_;
+};
+
 class SetSweepCommand : public QUndoCommand {
  public:
   SetSweepCommand(Document* document, SweepPlan before, SweepPlan after);

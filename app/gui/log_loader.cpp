@@ -39,6 +39,9 @@ void LogLoader::start(const QString& path, const LogOptions& options, PoseSource
   job_ = job;
   LogOptions o = options;
   o.cancel = &job->cancel;
+  // The Document places the odometry at the start pose (Document::setStartPose), so that a new
+  // one needs no new load.
+  o.startPose.reset();
   // Called on the worker after each block: post a whole-percent change to the GUI thread.
   o.progress = [this, job](std::uint64_t done, std::uint64_t total) {
     if (total == 0) return;

@@ -194,6 +194,7 @@ void MainWindow::connectDocument() {
   connect(document_, &Document::settingsChanged, this, &MainWindow::onSettingsChanged);
   connect(document_, &Document::cellSizeChanged, this, &MainWindow::onCellSizeChanged);
   connect(document_, &Document::referenceChanged, this, &MainWindow::onReferenceChanged);
+  connect(document_, &Document::startPoseChanged, this, &MainWindow::onStartPoseChanged);
   connect(document_, &Document::overlaysChanged, this, [this](ui::Overlays overlays) {
     view_->setOverlays(overlays);
     for (QAction* a : actions_.overlays) {
@@ -215,6 +216,16 @@ void MainWindow::connectDocument() {
       pinned.push_back({row.label, row.settings});
     if (beamDock_) beamDock_->view()->setPinnedConfigurations(std::move(pinned));
   });
+}
+
+void MainWindow::onStartPoseChanged() {
+  // The loaded log's odometry moved (Document::setStartPose): its path, its scan and its map.
+  if (!document_->source() || !document_->source()->complete()) return;
+  scanShownPose_.reset();
+  showCurrentScan();
+  onReferenceChanged();  // the view fits the moved path and the reference
+  remap_->start(document_->source(), document_->cellSize(), document_->mapperSettings(),
+                timeline_->time());
 }
 
 void MainWindow::onSettingsChanged() {

@@ -153,6 +153,7 @@ class MainWindow : public QMainWindow {
   void onSettingsChanged();
   void onCellSizeChanged(double metres);
   void onReferenceChanged();
+  void onStartPoseChanged();
   // Shows the document's settings in the menus, title, summary, panel and beam view, and
   // remembers them soon.
   void showSettings();

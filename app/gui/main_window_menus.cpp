@@ -28,6 +28,7 @@
 #include "remap_controller.h"
 #include "sonargrid/engine/sensor_model.h"
 #include "sonargrid/engine/update_rule.h"
+#include "start_pose_picker.h"
 #include "tour_dialog.h"
 
 namespace sg::app {
@@ -208,6 +209,8 @@ void MainWindow::createMenus() {
     actions_.poseGroup->addAction(a);
     connect(a, &QAction::triggered, this, [this, p] { choosePose(p); });
   }
+  mapping->addSeparator();
+  new StartPosePicker(document_, view_, mapping, statusBar(), this);
   rebuildMappingMenu();
 
   QMenu* settings = menuBar()->addMenu(tr("&Settings"));

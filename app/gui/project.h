@@ -60,11 +60,14 @@ struct LogReading {
   std::optional<CsvLayout> csv;
   QString posesPath;  // absolute
   BagTopics topics;
+  // The robot's pose at the first scan in the reference's frame (LogOptions::startPose).
+  std::optional<Pose2D> startPose;
   bool operator==(const LogReading&) const = default;
 };
 
 inline LogReading readingOf(const LogOptions& o) {
-  return {o.format, o.lenient, o.ring, o.csv, QString::fromStdString(o.posesPath), o.topics};
+  return {o.format, o.lenient,  o.ring, o.csv, QString::fromStdString(o.posesPath),
+          o.topics, o.startPose};
 }
 
 inline LogOptions optionsOf(const LogReading& r) {
@@ -75,6 +78,7 @@ inline LogOptions optionsOf(const LogReading& r) {
   o.csv = r.csv;
   o.posesPath = r.posesPath.toStdString();
   o.topics = r.topics;
+  o.startPose = r.startPose;
   return o;
 }
 

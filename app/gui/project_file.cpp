@@ -90,6 +90,8 @@ QJsonObject readingJson(const LogReading& r, const QString& projectPath, Project
                                    {"odometry", QString::fromStdString(r.topics.odometry)},
                                    {"truth", QString::fromStdString(r.topics.truth)}});
   }
+  if (r.startPose)
+    o.insert("start_pose", QJsonArray{r.startPose->x(), r.startPose->y(), r.startPose->heading});
   return o;
 }
 
@@ -216,6 +218,16 @@ class Reader {
       }
       r.topics.odometry = string(topics, tf, QStringLiteral("odometry"), false).toStdString();
       r.topics.truth = string(topics, tf, QStringLiteral("truth"), false).toStdString();
+    }
+    if (o.contains(QStringLiteral("start_pose"))) {
+      const QJsonArray p = array(o, field, QStringLiteral("start_pose"));
+      bool ok = p.size() == 3;
+      for (qsizetype k = 0; ok && k < 3; ++k)
+        ok = p[k].isDouble() && std::isfinite(p[k].toDouble());
+      if (!ok)
+        fail(join(field, QStringLiteral("start_pose")),
+             QStringLiteral("expected [x, y, theta] in metres and radians"));
+      r.startPose = Pose2D(p[0].toDouble(), p[1].toDouble(), p[2].toDouble());
     }
     return r;
   }

@@ -38,6 +38,7 @@ ProjectState everyFieldSet(const QString& dir) {
   s.logReading.csv = parseCsvLayout("time=1,x=2,y=3,theta=4,sonars=5-28,length=mm,noecho=5110");
   s.logReading.posesPath = dir + QStringLiteral("/poses.csv");
   s.logReading.topics = {{"/sonar/front", "/sonar/back"}, "/odom", "-"};
+  s.logReading.startPose = Pose2D(2.25, -1.0, degToRad(-37.5));  // an angle with a long decimal
   s.secondLogPath =
       QFileInfo(QStringLiteral(SONARGRID_DATASETS "/arafat-room/run-2.sglog")).absoluteFilePath();
   ReferenceMap ref;
@@ -214,6 +215,11 @@ class TestProjectFile : public QObject {
                                        "\"log_reading\": {\"topics\": {\"sonar\": [3]}}, \"log\":")
                                 << QStringLiteral(
                                        "p.sgproj: log_reading.topics.sonar[0]: expected a topic");
+    QTest::newRow("start pose") << QByteArray(text).replace(
+                                       "\"log\":",
+                                       "\"log_reading\": {\"start_pose\": [1, 2]}, \"log\":")
+                                << QStringLiteral(
+                                       "p.sgproj: log_reading.start_pose: expected [x, y, theta]");
     QTest::newRow("inline reference")
         << QByteArray(text).replace(
                "\"log\":",
@@ -236,8 +242,9 @@ class TestProjectFile : public QObject {
                      "\"aperture\": 0.4363323129985824, \"min_range\": 0.15, \"max_range\": 5, "
                      "\"sonars\": "
                      "[[0.069, 0.136, 1.5707963267948966], [0.114, 0.119, 0.8726646259971648]]}, "
-                     "\"poses\": \"p.csv\"}, \"log\":");
+                     "\"poses\": \"p.csv\", \"start_pose\": [1.5, -2, 3.0]}, \"log\":");
     const ProjectState s = parseProject(text, QStringLiteral("/data/p.sgproj"));
+    QVERIFY(s.logReading.startPose == Pose2D(1.5, -2.0, 3.0));
     QCOMPARE(s.logReading.format, LogFormat::Bag);
     QCOMPARE(s.logReading.topics.sonar, std::vector<std::string>{"/RosAria/sonar"});
     QCOMPARE(s.logReading.topics.odometry, std::string("/RosAria/pose"));
