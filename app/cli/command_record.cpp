@@ -56,6 +56,8 @@ nlohmann::ordered_json statsJson(const arcos::LinkCounters& c) {
   o["dropped_readings"] = c.droppedReadings;
   o["connections"] = c.handshakes;
   o["reconnects"] = c.reconnects;
+  o["segments"] = c.segments;
+  o["stitched"] = c.stitched;
   o["lost_connections"] = c.lostConnections;
   o["timeouts"] = c.timeouts;
   o["attempts"] = c.attempts;
@@ -141,9 +143,27 @@ int runRecord(Arguments& args) {
                      }
                      if (wander) driver.emplace(robot.ring);
                    });
+  std::uint64_t loggedSegments = 0;
+  std::uint64_t loggedStitched = 0;
   QObject::connect(&link, &live::RobotLink::scanReceived, &app, [&](const Scan& scan) {
     if (!log || !failure.empty()) return;
     try {
+      // Each connection's scans are a segment (arcos/odometry_stitcher.h): the log says where one
+      // begins and whether its odometry was stitched onto the one before.
+      const arcos::LinkCounters& c = link.counters();
+      if (c.segments != loggedSegments) {
+        if (loggedSegments != 0) {
+          log->comment("segment " + std::to_string(c.segments) +
+                       " from t = " + fixed(scan.time, 3) + " s: " +
+                       (c.stitched != loggedStitched
+                            ? "odometry restarted by the robot, stitched onto the last pose of "
+                              "segment " +
+                                  std::to_string(loggedSegments)
+                            : "odometry continues segment " + std::to_string(loggedSegments)));
+        }
+        loggedSegments = c.segments;
+        loggedStitched = c.stitched;
+      }
       log->append(scan);
     } catch (const std::exception& e) {
       fail(e.what());
@@ -235,9 +255,9 @@ int runRecord(Arguments& args) {
               << " SIPs, " << c.simStats << " SIMSTATs), " << c.framing.badChecksums
               << " bad checksums, " << c.errors() - c.framing.badChecksums
               << " other malformed packets, " << c.framing.skippedBytes << " bytes skipped, "
-              << c.handshakes << " connections, " << c.reconnects << " reconnects, "
-              << c.lostConnections << " lost, " << c.timeouts << " timed out, " << c.readings
-              << " readings\n";
+              << c.handshakes << " connections, " << c.reconnects << " reconnects, " << c.segments
+              << " segments (" << c.stitched << " stitched), " << c.lostConnections << " lost, "
+              << c.timeouts << " timed out, " << c.readings << " readings\n";
   }
   if (!failure.empty()) throw std::runtime_error(failure);
   if (!log) {

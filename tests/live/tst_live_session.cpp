@@ -19,6 +19,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "growing_log.h"
 #include "sonargrid/data/dataset.h"
 #include "sonargrid/engine/mapper.h"
 #include "sonargrid/io/log_reader.h"
@@ -111,22 +112,8 @@ Finished run(const QStringList& args, int timeoutMs = 60000) {
   return finish(p, timeoutMs);
 }
 
-// The number of complete scan lines a log file has so far.
-int scanLines(const QString& path) {
-  QFile f(path);
-  if (!f.open(QIODevice::ReadOnly)) return 0;
-  return static_cast<int>(f.readAll().count("\nscan "));
-}
-
-bool waitForScans(const QString& path, int scans, int timeoutMs) {
-  QElapsedTimer t;
-  t.start();
-  while (t.elapsed() < timeoutMs) {
-    if (scanLines(path) >= scans) return true;
-    QTest::qWait(50);
-  }
-  return false;
-}
+using live_test::scanLines;
+using live_test::waitForScans;
 
 sg::Dataset load(const QString& path) {
   return sg::readSglog(path.toStdString());

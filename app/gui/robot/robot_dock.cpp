@@ -475,13 +475,15 @@ void RobotDock::showStatus() {
            "<tr><td>bytes skipped</td><td align=right>%11</td></tr>"
            "<tr><td>connections</td><td align=right>%12</td></tr>"
            "<tr><td>reconnects</td><td align=right>%13</td></tr>"
-           "<tr><td>lost / timed out</td><td align=right>%14 / %15</td></tr>")
+           "<tr><td>lost / timed out</td><td align=right>%14 / %15</td></tr>"
+           "<tr><td>segments / stitched</td><td align=right>%16 / %17</td></tr>")
             .arg(session_->packetsPerSecond(), 0, 'f', 1)
             .arg(count(c.framing.frames), count(c.sips), count(c.simStats), count(c.readings),
                  count(c.framing.badChecksums), count(c.framing.badCounts), count(c.malformedSips),
                  count(c.malformedSimStats))
             .arg(count(c.malformedServerInfo), count(c.framing.skippedBytes), count(c.handshakes),
-                 count(c.reconnects), count(c.lostConnections), count(c.timeouts));
+                 count(c.reconnects), count(c.lostConnections), count(c.timeouts))
+            .arg(count(c.segments), count(c.stitched));
   } else {
     html = tr("<table>");
   }

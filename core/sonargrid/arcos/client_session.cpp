@@ -5,6 +5,8 @@
 #include <cctype>
 #include <cmath>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace sg::arcos {
 namespace {
@@ -35,6 +37,7 @@ ClientSession::ClientSession(ClientSettings settings, Listener& listener)
     : settings_(std::move(settings)), listener_(listener) {}
 
 void ClientSession::start(double now) {
+  flushScans();
   decoder_.reset();
   tracker_.reset();
   handshakeStart_ = now;
@@ -51,12 +54,14 @@ void ClientSession::restartHandshake(double now) {
 }
 
 void ClientSession::disconnected() {
+  flushScans();
   state_ = State::Idle;
   decoder_.reset();
   counters_.framing = decoder_.counters();
 }
 
 void ClientSession::lose(const std::string& reason) {
+  flushScans();
   state_ = State::Idle;
   ++counters_.timeouts;
   listener_.onLost(reason);
@@ -144,10 +149,12 @@ void ClientSession::onPacket(const Packet& p, double now) {
     }
     ++counters_.sips;
     const std::uint64_t droppedBefore = tracker_->droppedReadings();
-    const Scan scan = tracker_->apply(*sip, now);
+    Scan scan = tracker_->apply(*sip, now);
     counters_.droppedReadings += tracker_->droppedReadings() - droppedBefore;
     counters_.readings += scan.readings.size();
-    listener_.onScan(scan);
+    std::vector<Scan> ready;
+    stitcher_.add(std::move(scan), simulator_, ready);
+    deliver(ready);
   } else if (p.id == packet_id::kSimStat) {
     const std::optional<SimStat> stat = decodeSimStat(p.payload);
     if (!stat) {
@@ -178,6 +185,8 @@ void ClientSession::onServerInfo(const Packet& p, double now) {
     ++counters_.malformedServerInfo;
     info = ServerInfo{};
   }
+  flushScans();
+  stitcher_.newSegment();
   server_ = *info;
   robot_ = chooseRobot(*info, valid);
   tracker_.emplace(*robot_);
@@ -191,6 +200,7 @@ void ClientSession::onServerInfo(const Packet& p, double now) {
       settings_.simStat == SimStatRequest::Always ||
       (settings_.simStat == SimStatRequest::Auto && looksLikeSimulator(info->name));
   if (simulator) send(encodeCommand(command::kSimStat, 2), now);
+  simulator_ = simulator;
   listener_.onConnected(*server_, *robot_);
 }
 
@@ -254,7 +264,21 @@ void ClientSession::close(double now) {
     if (drove_) send(encodeCommand(command::kStop), now);
     send(encodeCommand(command::kClose), now);
   }
+  flushScans();
   state_ = State::Idle;
+}
+
+void ClientSession::deliver(std::vector<Scan>& scans) {
+  counters_.segments = stitcher_.segments();
+  counters_.stitched = stitcher_.stitched();
+  for (const Scan& scan : scans) listener_.onScan(scan);
+  scans.clear();
+}
+
+void ClientSession::flushScans() {
+  std::vector<Scan> ready;
+  stitcher_.flush(ready);
+  deliver(ready);
 }
 
 std::span<const double> ClientSession::latestRanges() const {

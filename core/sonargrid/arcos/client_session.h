@@ -17,6 +17,7 @@
 
 #include "sonargrid/arcos/decoder.h"
 #include "sonargrid/arcos/messages.h"
+#include "sonargrid/arcos/odometry_stitcher.h"
 #include "sonargrid/arcos/robot_params.h"
 #include "sonargrid/arcos/sip_tracker.h"
 #include "sonargrid/data/dataset.h"
@@ -40,6 +41,8 @@ struct LinkCounters {
   std::uint64_t attempts = 0;         // connections tried (counted by the link)
   std::uint64_t reconnects = 0;       // handshakes after the first (counted by the link)
   std::uint64_t pulses = 0;
+  std::uint64_t segments = 0;  // connections that delivered a scan (odometry_stitcher.h)
+  std::uint64_t stitched = 0;  // of them, those whose odometry was placed onto the one before
 
   // Every malformed or corrupt packet, whatever its kind.
   std::uint64_t errors() const {
@@ -119,6 +122,10 @@ class ClientSession {
   // Why the handshake failed, in words: what came back since it began and the likely cause.
   std::string handshakeFailure() const;
   RobotParameters chooseRobot(const ServerInfo& info, bool valid);
+  // Hands the stitcher's ready scans to the listener.
+  void deliver(std::vector<Scan>& scans);
+  // The connection ended: the scans the stitcher still holds are delivered.
+  void flushScans();
 
   ClientSettings settings_;
   Listener& listener_;
@@ -128,6 +135,8 @@ class ClientSession {
   std::optional<ServerInfo> server_;
   std::optional<RobotParameters> robot_;
   std::optional<SipTracker> tracker_;
+  OdometryStitcher stitcher_;
+  bool simulator_ = false;  // SIMSTATs were asked for: true poses will come
   double handshakeStart_ = 0.0;
   FramingCounters framingAtStart_;  // the decoder's counts when the handshake began
   double attemptStart_ = 0.0;

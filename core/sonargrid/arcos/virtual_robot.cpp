@@ -80,6 +80,13 @@ void VirtualRobot::clientConnected(double now) {
   lastClientPacket_ = now;
 }
 
+void VirtualRobot::resetOdometry() {
+  // The counters restart where the robot stands: the pose they measure from is the current one.
+  const Pose2D measured = drifting_ ? drifting_->pose() : true_;
+  odometryOrigin_ = measured;
+  odometry_ = Pose2D();
+}
+
 void VirtualRobot::clientDisconnected(double now) {
   clientConnected(now);
 }
@@ -265,6 +272,7 @@ void VirtualRobot::moveTo(double t) {
     } else {
       odometry_ = target;
     }
+    if (odometryOrigin_) odometry_ = relativePose(*odometryOrigin_, odometry_);
     true_ = target;
     time_ = next;
   }

@@ -65,6 +65,9 @@ class VirtualRobot {
   // A client connected or left (times in simulated seconds). A new client must shake hands.
   void clientConnected(double now);
   void clientDisconnected(double now);
+  // The controller restarts its odometry at (0, 0, 0) where the robot stands, as AMRISim does for
+  // every new session and a Pioneer when it is switched on again.
+  void resetOdometry();
   // Bytes from the client; the replies are appended to `out`.
   void receive(std::span<const std::uint8_t> bytes, double now, Bytes& out);
   // Moves the robot to `now` (never backwards), firing its sonars and appending the SIPs (and
@@ -117,6 +120,7 @@ class VirtualRobot {
   double time_ = 0.0;
   Pose2D true_;
   Pose2D odometry_;
+  std::optional<Pose2D> odometryOrigin_;  // resetOdometry(): where the counters restarted
   std::optional<Odometry> drifting_;
   bool following_ = false;  // driving the route
   std::optional<double> routeStart_;

@@ -58,4 +58,12 @@ struct Pose2D {
   bool operator==(const Pose2D& o) const { return position == o.position && heading == o.heading; }
 };
 
+// a⁻¹ ∘ b: pose b expressed in the frame of pose a (so a.compose(relativePose(a, b)) is b).
+inline Pose2D relativePose(const Pose2D& a, const Pose2D& b) {
+  Pose2D r;
+  r.position = Eigen::Rotation2Dd(-a.heading).toRotationMatrix() * (b.position - a.position);
+  r.heading = wrapAngle(b.heading - a.heading);
+  return r;
+}
+
 }  // namespace sg

@@ -56,6 +56,15 @@ void SglogRecorder::append(const Scan& scan) {
   if (std::chrono::steady_clock::now() - lastSync_ >= syncInterval_) sync();
 }
 
+void SglogRecorder::comment(const std::string& text) {
+  if (!file_) fail("the recording is finished");
+  buffer_ = "# ";
+  for (const char c : text) buffer_ += static_cast<unsigned char>(c) < 0x20 || c == 0x7F ? ' ' : c;
+  buffer_ += '\n';
+  file_->append(buffer_);
+  dirty_ = true;
+}
+
 void SglogRecorder::sync() {
   if (!file_ || !dirty_) return;
   file_->sync();

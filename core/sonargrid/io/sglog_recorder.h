@@ -36,6 +36,9 @@ class SglogRecorder {
   // last one, a reading of a sonar outside the ring, a non-finite number) or the file cannot
   // (the disk is full); the file then still ends after the last complete scan.
   void append(const Scan& scan);
+  // Appends `text` as a comment line ('# ' and the text, its line breaks made blanks): the reader
+  // skips it. Throws like append().
+  void comment(const std::string& text);
   // fsync when something was appended since the last one.
   void sync();
   // Appends 'end', syncs and closes; later calls do nothing. Throws like append().

@@ -45,7 +45,8 @@ bool ArcosServer::listen(const QHostAddress& address, quint16 port, QString* err
 }
 
 double ArcosServer::simTime() const {
-  return clock_.isValid() ? static_cast<double>(clock_.nsecsElapsed()) * 1e-9 * timeScale_ : 0.0;
+  return clockStart_ +
+         (clock_.isValid() ? static_cast<double>(clock_.nsecsElapsed()) * 1e-9 * timeScale_ : 0.0);
 }
 
 void ArcosServer::onNewConnection() {
@@ -122,6 +123,8 @@ void ArcosServer::shutdown() {
   hangUp(QStringLiteral("the server is shutting down"));
   server_.close();
   tick_.stop();
+  clockStart_ = simTime();
+  clock_.invalidate();
 }
 
 }  // namespace sg::live

@@ -29,14 +29,15 @@ class ArcosServer : public QObject {
   ~ArcosServer() override;
 
   // Starts listening (port 0: any free port) and the robot's clock; false with `error` set when
-  // the address cannot be bound.
+  // the address cannot be bound. After shutdown() it starts again where the clock stopped.
   bool listen(const QHostAddress& address, quint16 port, QString* error);
   quint16 port() const { return server_.serverPort(); }
   QHostAddress address() const { return server_.serverAddress(); }
   // Simulated seconds since listen().
   double simTime() const;
   bool hasClient() const { return client_ != nullptr; }
-  // Hangs up the client (flushing what was sent to it) and stops listening.
+  // Hangs up the client (flushing what was sent to it), stops listening and stops the robot's
+  // clock: a controller that is off does not drive, so the robot stands where it is.
   void shutdown();
 
  signals:
@@ -56,7 +57,8 @@ class ArcosServer : public QObject {
   QTcpServer server_;
   QPointer<QTcpSocket> client_;
   QString peer_;
-  QElapsedTimer clock_;
+  QElapsedTimer clock_;      // real time since listen()
+  double clockStart_ = 0.0;  // simulated seconds at listen()
   QElapsedTimer lastHeard_;  // real time since the client last sent a byte
   QTimer tick_;
 };
