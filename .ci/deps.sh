@@ -28,6 +28,7 @@ packages=(
   python3-pytest                            # its test suite (tests/python)
   slurmctld slurmd slurm-client munge       # a one-node Slurm cluster for .ci/slurm.sh
   ccache                                    # compiler cache shared by the CI builds (.ci/build.sh)
+  socat                                     # a pty bridged to the virtual robot: the serial test
 )
 
 missing=()

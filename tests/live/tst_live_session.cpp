@@ -14,6 +14,7 @@
 #include <QJsonObject>
 #include <QProcess>
 #include <QRegularExpression>
+#include <QStandardPaths>
 #include <QTemporaryDir>
 #include <QtTest>
 #include <cmath>
@@ -403,6 +404,61 @@ class TstLiveSession : public QObject {
     QVERIFY2(robot.out.contains("refused client"), robot.out.constData());
     QCOMPARE(firstDone.code, 0);
     QCOMPARE(firstDone.json["link"].toObject()["reconnects"].toInteger(), 0);
+  }
+
+  // The serial path for real (issue 50, item 2): socat bridges a pseudo-terminal to the virtual
+  // robot's TCP port, so `record` opens a tty device as it would a USB serial adapter. socat is
+  // then killed (the pty closes: the cable is unplugged) and started again on the same device name
+  // a second later (plugged back in): the recording goes on by itself, and keeps every scan from
+  // before the unplug.
+  void recordsOverAPseudoTerminalThroughSocat() {
+    const QString socat = QStandardPaths::findExecutable(QStringLiteral("socat"));
+    QVERIFY2(!socat.isEmpty(), "socat is not installed (.ci/deps.sh installs it)");
+    QTemporaryDir dir;
+    const QString tty = dir.filePath("robot-tty");
+    const QString recorded = dir.filePath("serial.sglog");
+    Robot robot;
+    QVERIFY2(robot.start({}), robot.error.constData());
+    // rawer: no line discipline on the pty; wait-slave: connect to the robot once the device is
+    // opened, as a serial adapter's robot is there only while the cable is in.
+    const QStringList bridge{QStringLiteral("PTY,link=%1,rawer,wait-slave").arg(tty),
+                             QStringLiteral("TCP:127.0.0.1:%1").arg(robot.port)};
+    auto plugIn = [&](QProcess& cable) {
+      cable.start(socat, bridge);
+      QElapsedTimer t;
+      t.start();
+      while (!QFile::exists(tty) && t.elapsed() < 10000) QTest::qWait(20);
+      return QFile::exists(tty);
+    };
+    QProcess cable1;
+    QVERIFY(plugIn(cable1));
+    QProcess record;
+    record.start(kCli, {"record", "--connect", "serial://" + tty + "?baud=115200", "--out",
+                        recorded, "--json"});
+    QVERIFY(waitForScans(recorded, 20, 20000));
+    cable1.terminate();  // unplugged: socat closes the pty and removes the device name
+    QVERIFY(cable1.waitForFinished(10000));
+    QTest::qWait(1000);
+    const sg::Dataset atUnplug = load(recorded);
+    QProcess cable2;
+    QVERIFY(plugIn(cable2));
+    // The recorder tries again after 0.5, 1, 2, 4 s: wait for twenty scans of the new connection.
+    QVERIFY(waitForScans(recorded, static_cast<int>(atUnplug.scans.size()) + 20, 30000));
+    ::kill(static_cast<pid_t>(record.processId()), SIGINT);
+    const Finished rec = finish(record, 30000);
+    cable2.terminate();
+    cable2.waitForFinished(10000);
+    QCOMPARE(robot.stop(), 0);
+    QVERIFY2(rec.code == 0, rec.err.constData());
+    const QJsonObject link = rec.json["link"].toObject();
+    QCOMPARE(link["connections"].toInteger(), 2);
+    QCOMPARE(link["lost_connections"].toInteger(), 1);
+    QCOMPARE(link["bad_checksums"].toInteger(), 0);
+    const sg::Dataset got = load(recorded);  // strict: it ends with 'end'
+    QVERIFY(got.scans.size() >= atUnplug.scans.size() + 20);
+    for (std::size_t i = 0; i < atUnplug.scans.size(); ++i)
+      QCOMPARE(got.scans[i], atUnplug.scans[i]);
+    QCOMPARE(static_cast<qint64>(got.readingCount()), rec.json["readings"].toInteger());
   }
 
   // A log that cannot be created ends the recording at the first connection: exit 1, naming it.
