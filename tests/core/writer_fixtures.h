@@ -245,6 +245,61 @@ inline std::string carmenLog() {
   return out;
 }
 
+// Any log in CARMEN's and Player's own format strings (those of carmenLog and playerSonarLog
+// above), one message per scan: the same readings in every format, for the readers to be checked
+// against each other on a log of any length. Velocities, accelerations and stalls are 0; a
+// reading without echo is written at the ring's max_range; each pose message precedes its scan by
+// kPoseLead. Every value must already have no more decimals than the formats print (2 for CARMEN's
+// ranges, 3 for Player's poses and ranges, 4 for its sonar yaws) for the files to hold the same
+// numbers.
+inline std::string carmenLogOf(const sg::Dataset& d) {
+  const CLocale c;
+  std::string out;
+  appendf(out, "# CARMEN Logfile\n");
+  for (const sg::Scan& s : d.scans) {
+    const double t = s.time - kPoseLead;
+    const sg::Pose2D& o = s.odometry;
+    appendf(out, "ODOM %f %f %f %f %f %f %f %s %f\n", o.x(), o.y(), o.heading, 0.0, 0.0, 0.0, t,
+            kCarmenHost, t + kLoggerLag);
+    if (s.truth)
+      appendf(out, "TRUEPOS %f %f %f %f %f %f %f %s %f\n", s.truth->x(), s.truth->y(),
+              s.truth->heading, o.x(), o.y(), o.heading, t, kCarmenHost, t + kLoggerLag);
+    std::vector<double> ranges(d.ring.size(), d.ring.maxRange);
+    for (const sg::Reading& r : s.readings) ranges[r.sonar] = r.echo() ? r.range : d.ring.maxRange;
+    appendf(out, "SONAR %f %d ", d.ring.apertureRad, static_cast<int>(ranges.size()));
+    for (const double r : ranges) appendf(out, "%.2lf ", r);
+    for (const sg::SonarMount& m : d.ring.sonars)
+      appendf(out, "%.3f %.3f %f ", m.pose.x(), m.pose.y(), m.pose.heading);
+    appendf(out, "%lf %s %lf\n", s.time, kCarmenHost, s.time + kLoggerLag);
+  }
+  return out;
+}
+
+inline std::string playerSonarLogOf(const sg::Dataset& d) {
+  const CLocale c;
+  std::string out;
+  playerFileHeader(out);
+  const double opened = d.scans.empty() ? 0.0 : d.scans.front().time - 2 * kPoseLead;
+  playerHeader(out, opened, "sonar", 4, 1);
+  appendf(out, "%u ", static_cast<unsigned>(d.ring.size()));
+  for (const sg::SonarMount& m : d.ring.sonars)
+    appendf(out, "%+07.3f %+07.3f %+07.4f ", m.pose.x(), m.pose.y(), m.pose.heading);
+  appendf(out, "\n");
+  for (const sg::Scan& s : d.scans) {
+    playerHeader(out, s.time - kPoseLead, "position2d", 1, 1);
+    appendf(out, "%+07.3f %+07.3f %+04.3f %+07.3f %+07.3f %+07.3f %d", s.odometry.x(),
+            s.odometry.y(), s.odometry.heading, 0.0, 0.0, 0.0, 0);
+    appendf(out, "\n");
+    std::vector<double> ranges(d.ring.size(), d.ring.maxRange);
+    for (const sg::Reading& r : s.readings) ranges[r.sonar] = r.echo() ? r.range : d.ring.maxRange;
+    playerHeader(out, s.time, "sonar", 1, 1);
+    appendf(out, "%u ", static_cast<unsigned>(ranges.size()));
+    for (const double r : ranges) appendf(out, "%.3f ", r);
+    appendf(out, "\n");
+  }
+  return out;
+}
+
 // The dataset every fixture holds: what the CARMEN fixture loads as, readings at or beyond the
 // default maximum range as no echo.
 inline sg::Dataset dataset() {
