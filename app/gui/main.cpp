@@ -20,6 +20,7 @@
 
 #include "cell_inspector.h"
 #include "comparison_table.h"
+#include "document.h"
 #include "export_file.h"
 #include "main_window.h"
 #include "metrics_panel.h"
@@ -260,6 +261,22 @@ int main(int argc, char** argv) {
     if (screenshot) return 2;
   }
   window.show();
+  // Test-only (docs/user-guide.md, "Projects"): SONARGRID_TEST_EDITS=FILE.sgproj makes that
+  // project's reference map, settings and pinned rows three edits of the opened document, as the
+  // user would make them, so that a test can kill a session with unsaved work.
+  if (const QString edits = qEnvironmentVariable("SONARGRID_TEST_EDITS"); !edits.isEmpty()) {
+    window.waitForLoad();
+    try {
+      const sg::app::ProjectState state = sg::app::readProject(edits);
+      sg::app::Document& document = *window.document();
+      document.setReference(state.reference, state.referencePath);
+      document.setMapperSettings(state.settings);
+      document.setPinnedRows(state.pinnedRows);
+    } catch (const std::exception& e) {
+      std::cerr << "sonargrid: SONARGRID_TEST_EDITS: " << e.what() << '\n';
+      return 2;
+    }
+  }
   // A crashed session's autosave: offered when the user opened nothing else (SONARGRID_RECOVER
   // answers without a dialog; without a display nothing blocks).
   if (!screenshot && file.isEmpty()) window.offerRecovery();

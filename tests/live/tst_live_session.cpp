@@ -378,6 +378,16 @@ class TstLiveSession : public QObject {
           got.readingCount());
     QVERIFY(got.readingCount() <= sentReadings);
     QVERIFY(got.readingCount() + kReadingsPerSecond >= sentReadings);
+    // A valid log of what the robot sent, SIP for SIP and reading for reading, up to the cut.
+    const sg::Dataset sent = load(serverLog);
+    QVERIFY(got.scans.size() <= sent.scans.size());
+    for (std::size_t i = 0; i < got.scans.size(); ++i) {
+      QCOMPARE(got.scans[i].readings.size(), sent.scans[i].readings.size());
+      for (std::size_t k = 0; k < got.scans[i].readings.size(); ++k) {
+        QCOMPARE(got.scans[i].readings[k].sonar, sent.scans[i].readings[k].sonar);
+        QCOMPARE(got.scans[i].readings[k].range, sent.scans[i].readings[k].range);
+      }
+    }
     QFile f(recorded);
     QVERIFY(f.open(QIODevice::ReadOnly));
     QVERIFY(!f.readAll().endsWith("end\n"));

@@ -32,6 +32,7 @@
 #include "robot/robot_dock.h"
 #include "sonargrid/io/csv_log.h"
 #include "sonargrid/io/log_reader.h"
+#include "sonargrid/reference/read_reference.h"
 #include "sonargrid/reference/reference_json.h"
 #include "sweep_view.h"
 #include "timeline.h"
@@ -53,7 +54,8 @@ MapperSettings hpfAddition(double epsilon) {
   return s;
 }
 
-constexpr int kWaitMs = 120000;  // a bound against hangs, never a measured time
+constexpr int kWaitMs = 120000;      // a bound against hangs, never a measured time
+constexpr int kAppAutosaveMs = 200;  // the app processes' autosave interval (prepareApp)
 
 // The first parameter of the model that its paper's rule uses (HIMM's rule ignores p_hit).
 const ParameterSpec& firstUsed(const std::string& model) {
@@ -337,6 +339,82 @@ class TestMainWindowProject : public QObject {
     QVERIFY(Autosave::orphans().isEmpty());
   }
 
+  // Issue 50, item 4: crash recovery end to end. The app opens a project (the room log, its
+  // reference, HPF at ε = 0.2); its reference (a corner of the box moved 10 cm), its settings
+  // (ε = 0.23, true pose) and its pinned rows (two) are edited in the running process
+  // (SONARGRID_TEST_EDITS, docs/user-guide.md "Projects"); once the autosave holds them and a
+  // further interval has passed, the process is killed with SIGKILL. The next start is offered
+  // the session and recovers every edit, still unsaved, with the project it had open.
+  void killedSessionWithEditsIsRecovered() {
+    QTemporaryDir dir;
+    QVERIFY(dir.isValid());
+    const QString roomJson = QStringLiteral(SONARGRID_DATASETS "/room/room.json");
+    ProjectState opened;
+    opened.logPath = QFileInfo(kRoom).absoluteFilePath();
+    opened.reference = readReference(roomJson.toStdString());
+    opened.referencePath = QFileInfo(roomJson).absoluteFilePath();
+    opened.settings = hpfAddition(0.2);
+    const QString project = dir.filePath(QStringLiteral("room.sgproj"));
+    writeProject(opened, project);
+
+    ProjectState edited = opened;
+    edited.reference->objects[1].corners[0] +=
+        Eigen::Vector2d(0.1 / edited.reference->metresPerUnit(), 0.0);
+    edited.referenceModified = true;
+    edited.settings = hpfAddition(0.23);
+    edited.settings.pose = PoseSource::Truth;
+    edited.pinnedRows = {PinnedRow{QStringLiteral("ε 0.2"), hpfAddition(0.2), 0.05},
+                         PinnedRow{QStringLiteral("ε 0.3"), hpfAddition(0.3), 0.05}};
+    const QString edits = dir.filePath(QStringLiteral("edits.sgproj"));
+    writeProject(edited, edits);
+
+    QTemporaryDir home;
+    QVERIFY(home.isValid());
+    QProcess app;
+    prepareApp(app, home);
+    QProcessEnvironment env = app.processEnvironment();
+    env.insert("SONARGRID_TEST_EDITS", edits);
+    app.setProcessEnvironment(env);
+    app.start(QStringLiteral(SONARGRID_APP), {project});
+    QVERIFY(app.waitForStarted(30000));
+    const QString autosave =
+        autosaveDir_.filePath(QStringLiteral("session-%1.sgproj").arg(app.processId()));
+    const QString wantReference = QString::fromStdString(referenceJsonText(*edited.reference));
+    const auto holdsTheEdits = [&] {
+      if (!QFile::exists(autosave)) return false;
+      const ProjectState s = readProject(autosave);
+      return s.reference &&
+             QString::fromStdString(referenceJsonText(*s.reference)) == wantReference &&
+             sameSettings(s.settings, edited.settings) && s.pinnedRows == edited.pinnedRows;
+    };
+    QElapsedTimer clock;
+    clock.start();
+    QTRY_VERIFY_WITH_TIMEOUT(holdsTheEdits(), kWaitMs);
+    qInfo("edits autosaved %lld ms after the start", clock.elapsed());
+    QTest::qWait(2 * kAppAutosaveMs);  // past the interval: the edits are old enough
+    app.kill();
+    QVERIFY(app.waitForFinished(30000));
+    QCOMPARE(app.exitStatus(), QProcess::CrashExit);
+
+    QCOMPARE(Autosave::orphans(), QStringList{autosave});  // offered
+    QCOMPARE(Autosave::originalProject(autosave), QFileInfo(project).absoluteFilePath());
+    MainWindow window(ui::GridView::Backend::Raster);
+    window.show();
+    QVERIFY(window.offerRecovery(QStringLiteral("yes")));
+    QVERIFY(window.waitForLoad(kWaitMs));
+    QVERIFY(window.waitForMap(kWaitMs));
+    qInfo("recovered after %lld ms", clock.elapsed());
+    const Document& d = *window.document();
+    QCOMPARE(d.logPath(), opened.logPath);
+    QVERIFY(d.reference().has_value());
+    QCOMPARE(QString::fromStdString(referenceJsonText(*d.reference())), wantReference);
+    QVERIFY(d.referenceModified());
+    QVERIFY(sameSettings(d.mapperSettings(), edited.settings));
+    QVERIFY(d.pinnedRows() == edited.pinnedRows);
+    QVERIFY(d.isModified());  // recovered work is still unsaved
+    QVERIFY(Autosave::orphans().isEmpty());
+  }
+
   // Issue 49 item 2: a project the app wrote must always open. For every model, each dock is
   // used once as a user would (the parameter panel's spin box, the Map dock's cell size, the
   // timeline, the beam view's reading and compare model, the metrics panel, the comparison
@@ -482,7 +560,7 @@ class TestMainWindowProject : public QObject {
   void prepareApp(QProcess& app, const QTemporaryDir& home) const {
     QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
     env.insert("QT_QPA_PLATFORM", "offscreen");
-    env.insert("SONARGRID_AUTOSAVE_MS", "200");
+    env.insert("SONARGRID_AUTOSAVE_MS", QString::number(kAppAutosaveMs));
     env.insert("SONARGRID_AUTOSAVE_DIR", autosaveDir_.path());
     env.insert("XDG_CONFIG_HOME", home.filePath("config"));
     env.insert("XDG_DATA_HOME", home.filePath("data"));
