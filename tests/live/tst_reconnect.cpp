@@ -103,17 +103,24 @@ class TstReconnect : public QObject {
     QVERIFY(text.open(QIODevice::ReadOnly));
     QVERIFY(text.readAll().contains("# segment 2 from t = "));
     // No SIP the server sent while connected is missing: all of them before the kill, and all
-    // after but those on their way when the recorder closed the session.
-    QVERIFY2(
-        got.scans.size() <= sent.size() && got.scans.size() + 3 >= sent.size(),
-        qPrintable(QStringLiteral("%1 recorded, %2 sent").arg(got.scans.size()).arg(sent.size())));
+    // after but those on their way when the recorder closed the session (one or two on an idle
+    // machine, one per 0.1 s that a loaded one holds the recorder back: up to 3 s of them).
+    QVERIFY2(got.scans.size() >= sentBefore + 40 && got.scans.size() <= sent.size() &&
+                 got.scans.size() + 30 >= sent.size(),
+             qPrintable(QStringLiteral("%1 recorded, %2 sent, %3 before the kill")
+                            .arg(got.scans.size())
+                            .arg(sent.size())
+                            .arg(sentBefore)));
     for (std::size_t i = 0; i < got.scans.size(); ++i)
       QCOMPARE(got.scans[i].readings.size(), sent[i].readings.size());
 
     // The odometry goes on from where the robot was: every recorded pose is the server's true one
     // (no drift: the odometry was the true pose until the restart) to within the SIP's units
-    // (0.485 mm, 0.088°) before the restart, and after it to within the robot's motion between
-    // its last SIP before the kill and the kill (at most one SIP interval, 0.1 s).
+    // (0.485 mm, 0.088°) before the restart. After it, to within the robot's motion between its
+    // last SIP before the kill and the kill (at most one SIP interval, 0.1 s: 0.6 mm measured on an
+    // idle machine); when a loaded machine lets the robot move more than the true poses'
+    // resolution across the gap, the stitch follows the true poses, which come in whole degrees:
+    // up to a degree off, some centimetres at the far end of the drive.
     double worstBefore = 0.0, worstAfter = 0.0, worstHeadingAfter = 0.0;
     for (std::size_t i = 0; i < got.scans.size(); ++i) {
       const Pose2D& o = got.scans[i].odometry;
@@ -132,8 +139,8 @@ class TstReconnect : public QObject {
         got.scans.size(), sent.size(), sentBefore, worstBefore, worstAfter,
         radToDeg(worstHeadingAfter));
     QVERIFY(worstBefore < 0.002);
-    QVERIFY(worstAfter < 0.05);
-    QVERIFY(radToDeg(worstHeadingAfter) < 3.0);
+    QVERIFY(worstAfter < 0.1);
+    QVERIFY(radToDeg(worstHeadingAfter) < 1.5);
 
     // So the map after the reconnect is the map of the same drive without one: the recorded log
     // by its odometry against the server's own scans by their true poses, on one grid.
@@ -153,7 +160,7 @@ class TstReconnect : public QObject {
     qInfo("maps: %zu observed cells, %zu differ, %zu by more than one level", observed, differ,
           byMore);
     QVERIFY(observed > 1000);
-    QVERIFY(double(differ) <= 0.02 * double(observed));
+    QVERIFY(double(differ) <= 0.05 * double(observed));  // 6 of 9119 measured on an idle machine
   }
 };
 
