@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -11,6 +12,8 @@
 #include "map_options.h"
 #include "sonargrid/data/scan_poses.h"
 #include "sonargrid/export/map_export.h"
+#include "sonargrid/forward/forward_em.h"
+#include "stop_signal.h"
 #include "thread_flags.h"
 
 namespace sg::cli {
@@ -28,26 +31,42 @@ MapOptions parseMapOptions(Arguments& args) {
   else
     throw UsageError("--pose takes odom or truth, got '" + pose + "'");
   o.settings.model = args.required("--model");
-  o.settings.rule = args.required("--rule");
+  const bool forwardModel = o.settings.model == forward::kModelName;
+  if (forwardModel) {
+    // EM is the forward model's own way of combining readings (docs/forward-model.md).
+    o.settings.rule = args.value("--rule").value_or(forward::kRuleName);
+    if (o.settings.rule != forward::kRuleName) {
+      throw UsageError("--model " + o.settings.model +
+                       " learns its map by EM and takes no update rule: leave out --rule '" +
+                       o.settings.rule + "'");
+    }
+  } else {
+    o.settings.rule = args.required("--rule");
+  }
   o.cell = args.number("--cell", 0.05, 0.001, 10.0);
   o.until = args.number("--until", o.until, -1e300, 1e300);
 
-  if (!makeSensorModel(o.settings.model)) {
+  if (!forwardModel && !makeSensorModel(o.settings.model)) {
     std::string names;
     for (const std::string& n : sensorModelNames()) names += (names.empty() ? "" : ", ") + n;
-    throw UsageError("unknown --model '" + o.settings.model + "'; choose one of " + names);
+    throw UsageError("unknown --model '" + o.settings.model + "'; choose one of " + names + ", " +
+                     forward::kModelName);
   }
-  if (!makeUpdateRule(o.settings.rule)) {
+  if (forwardModel) {
+    o.settings.parameters = forward::defaultForwardParameters();
+  } else if (!makeUpdateRule(o.settings.rule)) {
     std::string names;
     for (const std::string& n : updateRuleNames()) names += (names.empty() ? "" : ", ") + n;
     throw UsageError("unknown --rule '" + o.settings.rule + "'; choose one of " + names);
   }
-  const Compatibility c = compatibility(o.settings.model, o.settings.rule);
-  if (!c.allowed) {
-    throw InputError("model '" + o.settings.model + "' cannot be used with rule '" +
-                     o.settings.rule + "': " + c.reason);
+  if (!forwardModel) {
+    const Compatibility c = compatibility(o.settings.model, o.settings.rule);
+    if (!c.allowed) {
+      throw InputError("model '" + o.settings.model + "' cannot be used with rule '" +
+                       o.settings.rule + "': " + c.reason);
+    }
+    o.settings.parameters = defaultParameters(o.settings.model, o.settings.rule);
   }
-  o.settings.parameters = defaultParameters(o.settings.model, o.settings.rule);
   std::vector<std::string> seen;
   for (const std::string& kv : args.values("--set")) {
     const auto eq = kv.find('=');
@@ -63,6 +82,17 @@ MapOptions parseMapOptions(Arguments& args) {
       throw UsageError(std::string("--set: ") + e.what());
     }
   }
+  if (const auto iterations = args.value("--iterations")) {
+    if (!forwardModel)
+      throw UsageError("--iterations caps EM's iterations: it goes with --model forward-em");
+    if (std::find(seen.begin(), seen.end(), "iterations") != seen.end())
+      throw UsageError("--iterations and --set iterations= say the same: give one");
+    try {
+      o.settings.parameters.set("iterations", parseNumber(*iterations, "--iterations"));
+    } catch (const ParameterError& e) {
+      throw UsageError(std::string("--iterations: ") + e.what());
+    }
+  }
   return o;
 }
 
@@ -73,6 +103,37 @@ GridSpec fittingGridOf(const Dataset& data, const MapOptions& o, const std::stri
     throw e.inFile(logPath);
   }
 }
+
+namespace {
+
+// The forward model's map: EM over the whole log (docs/forward-model.md), with a line of progress
+// per iteration on stderr; Ctrl-C stops it (no map).
+BuiltMap buildForwardMap(const Dataset& data, const MapOptions& o, const std::string& logPath,
+                         const GridSpec& grid, BuiltMap out) {
+  const forward::ForwardSettings settings = forward::settingsOf(o.settings.parameters);
+  const StopOnSignal stop;
+  try {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<forward::ForwardBeam> beams =
+        forward::beamsOf(data, o.settings.pose, o.until);
+    forward::EmResult em =
+        forward::runEm(beams, grid, settings, &stop.flag(), [&](const forward::EmProgress& p) {
+          std::cerr << "sonargrid-cli: EM iteration " << p.iteration << " of at most " << p.cap
+                    << ": log-likelihood " << std::setprecision(10) << p.logLikelihood << '\n';
+        });
+    if (em.cancelled) throw InputError(logPath + ": EM stopped by a signal; no map was made");
+    out.elapsedMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    out.readings = em.readings;
+    out.map = std::move(em.map);
+    out.em = ForwardRun{std::move(em.logLikelihood), em.iterations, em.converged, em.coneCells};
+  } catch (const forward::ForwardError& e) {
+    throw InputError(logPath + ": " + e.what());
+  }
+  return out;
+}
+
+}  // namespace
 
 BuiltMap buildMap(const Dataset& data, const MapOptions& o, const std::string& logPath,
                   const std::optional<GridSpec>& onGrid, FootprintObserver* observer) {
@@ -85,6 +146,14 @@ BuiltMap buildMap(const Dataset& data, const MapOptions& o, const std::string& l
   if (out.scansWithoutTruth != 0) {
     std::cerr << "sonargrid-cli: note: " << logPath << ": " << out.scansWithoutTruth << " of "
               << data.scans.size() << " scans have no true pose and are left out of the map\n";
+  }
+  if (o.settings.model == forward::kModelName) {
+    if (observer) {
+      throw UsageError("--model " + o.settings.model +
+                       " writes no per-reading evidence to take statistics of; choose an inverse "
+                       "model");
+    }
+    return buildForwardMap(data, o, logPath, grid, std::move(out));
   }
   try {
     Mapper mapper(data.ring, grid, o.settings);
@@ -141,6 +210,12 @@ int runMap(Arguments& args) {
     out["cells_filled"] = m.filledCount();
     out["cv_histogram"] = m.levelHistogram();
     out["elapsed_ms"] = built.elapsedMs;
+    if (built.em) {
+      out["em"] = {{"iterations", built.em->iterations},
+                   {"converged", built.em->converged},
+                   {"cone_cells", built.em->coneCells},
+                   {"log_likelihood", built.em->logLikelihood}};
+    }
     std::cout << out.dump() << '\n';
   } else {
     std::cout << o.log << ": " << built.readings << " readings mapped with " << o.settings.model

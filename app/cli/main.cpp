@@ -21,6 +21,8 @@ commands:
       [--cell METRES] [--until SECONDS] [--png FILE [--legend] [--scale N]]
       [--ros-map BASENAME] [--threads N] [--json]
                              build an occupancy grid from a log
+  map --log FILE --model forward-em [--iterations N] [same flags as above]
+                             the forward model's map, learned by EM (docs/forward-model.md)
   score --reference REF (--log FILE [map flags] | --map FILE.yaml)
       [--metrics LIST] [--pairs N] [--seed N] [--iop-weight evidence|level]
       [--filled-threshold CV] [--json]

@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "arguments.h"
 #include "sonargrid/data/dataset.h"
@@ -39,6 +40,14 @@ LogOptions parseLogOptions(Arguments& args);
 Dataset loadLog(const std::string& path, const LogOptions& options, LoadReport* report = nullptr);
 Dataset loadLog(const std::string& path);
 
+// What EM did for a forward-model map (docs/forward-model.md).
+struct ForwardRun {
+  std::vector<double> logLikelihood;  // the start, then after each iteration
+  int iterations = 0;
+  bool converged = false;
+  std::size_t coneCells = 0;  // cells of all cones: what one iteration visits
+};
+
 struct BuiltMap {
   OccupancyMap map;
   std::size_t readings = 0;
@@ -46,6 +55,7 @@ struct BuiltMap {
   // Scans left out for want of the pose asked for (--pose truth: a scan without a true pose;
   // core/sonargrid/data/scan_poses.h). buildMap says so on stderr.
   std::size_t scansWithoutTruth = 0;
+  std::optional<ForwardRun> em;  // for --model forward-em
 };
 // The log's fitting grid at --cell; GridLimitError naming `logPath`, the scan and the grid limit
 // when it cannot be made (main() makes that exit status 2).

@@ -117,6 +117,7 @@ class TstCli : public QObject {
   void mapPng();
   void mapRosMap();
   void mapTextSummary();
+  void mapForwardModel();
 
   void errors_data();
   void errors();
@@ -728,6 +729,38 @@ void TstCli::mapTextSummary() {
   QVERIFY(QFile::exists(ros + ".pgm"));
 }
 
+// `--model forward-em` (docs/forward-model.md): EM's log-likelihood trace in --json, one line of
+// progress per iteration on stderr, every reading of the log mapped; `score` takes it too.
+void TstCli::mapForwardModel() {
+  const QStringList args = {"map",        "--log",        kRoomLog, "--model",
+                            "forward-em", "--iterations", "3",      "--json"};
+  const Run r = runCli(args, tmp_.path());
+  QVERIFY2(r.finished && r.status == QProcess::NormalExit && r.code == 0, describe(args, r));
+  const QJsonObject o = QJsonDocument::fromJson(r.out).object();
+  QCOMPARE(o.value("model").toString(), QString("forward-em"));
+  QCOMPARE(o.value("rule").toString(), QString("em"));
+  QCOMPARE(o.value("readings").toInteger(), qint64(times_.size()));
+  QCOMPARE(o.value("params").toObject().value("iterations").toDouble(), 3.0);
+  const QJsonObject em = o.value("em").toObject();
+  const QJsonArray trace = em.value("log_likelihood").toArray();
+  // The start and one value per iteration; three iterations do not converge on this log.
+  QCOMPARE(em.value("iterations").toInt(), 3);
+  QCOMPARE(em.value("converged").toBool(), false);
+  QCOMPARE(trace.size(), 4);
+  for (qsizetype i = 1; i < trace.size(); ++i)
+    QVERIFY(trace[i].toDouble() >= trace[i - 1].toDouble());
+  QVERIFY(em.value("cone_cells").toInteger() > o.value("readings").toInteger());
+  QVERIFY(o.value("cells_filled").toInteger() > 0);
+  QCOMPARE(r.err.count("EM iteration "), 4);
+
+  const QString reference = QStringLiteral(SONARGRID_DATASETS "/room/room.json");
+  const QStringList score = {"score",   "--reference", reference,      "--log", kRoomLog,
+                             "--model", "forward-em",  "--iterations", "2",     "--json"};
+  const Run s = runCli(score, tmp_.path());
+  QVERIFY2(s.finished && s.status == QProcess::NormalExit && s.code == 0, describe(score, s));
+  QVERIFY(QJsonDocument::fromJson(s.out).object().contains("iop_mm"));
+}
+
 // ---- errors -------------------------------------------------------------------------------------
 
 void TstCli::errors_data() {
@@ -743,6 +776,17 @@ void TstCli::errors_data() {
   QTest::newRow("unknown command")
       << QStringList{"frobnicate"} << 2 << "unknown command 'frobnicate' (try sonargrid-cli help)"
       << true;
+  QTest::newRow("map: the forward model with a rule")
+      << QStringList{"map", "--log", log, "--model", "forward-em", "--rule", "bayes"} << 2
+      << "--model forward-em learns its map by EM and takes no update rule: leave out --rule "
+         "'bayes'"
+      << true;
+  QTest::newRow("map: --iterations with an inverse model")
+      << (map + QStringList{"--iterations", "5"}) << 2
+      << "--iterations caps EM's iterations: it goes with --model forward-em" << true;
+  QTest::newRow("map: --iterations out of range")
+      << QStringList{"map", "--log", log, "--model", "forward-em", "--iterations", "0"} << 2
+      << "--iterations: " << false;
   QTest::newRow("models: extra argument")
       << QStringList{"models", "--json", "extra"} << 2 << "unexpected argument 'extra'" << true;
   QTest::newRow("models: --json twice")
@@ -757,10 +801,12 @@ void TstCli::errors_data() {
       << QStringList{"map", "--log", log, "--rule", "bayes"} << 2 << "missing --model" << true;
   QTest::newRow("missing --rule") << QStringList{"map", "--log", log, "--model", "hpf"} << 2
                                   << "missing --rule" << true;
-  QTest::newRow("unknown model")
-      << QStringList{"map", "--log", log, "--model", "sonar9", "--rule", "bayes"} << 2
-      << "unknown --model 'sonar9'; choose one of hpf, konolige, murphy, parameterized, himm"
-      << true;
+  QTest::newRow("unknown model") << QStringList{"map",    "--log",  log,    "--model",
+                                                "sonar9", "--rule", "bayes"}
+                                 << 2
+                                 << "unknown --model 'sonar9'; choose one of hpf, konolige, "
+                                    "murphy, parameterized, himm, forward-em"
+                                 << true;
   QTest::newRow("unknown rule")
       << QStringList{"map", "--log", log, "--model", "hpf", "--rule", "fuzzy"} << 2
       << "unknown --rule 'fuzzy'; choose one of addition, bayes, bayes-recursive, log, logodds, "
