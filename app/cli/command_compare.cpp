@@ -20,6 +20,7 @@
 #include "score_flags.h"
 #include "sonargrid/base/atomic_file.h"
 #include "sonargrid/base/concurrency.h"
+#include "sonargrid/forward/forward_em.h"
 #include "sonargrid/reference/read_reference.h"
 #include "thread_flags.h"
 
@@ -46,19 +47,29 @@ Config parseConfig(const std::string& text, PoseSource pose) {
   c.settings.pose = pose;
   c.settings.model = pair.substr(0, slash);
   c.settings.rule = pair.substr(slash + 1);
-  if (!makeSensorModel(c.settings.model)) {
+  if (c.settings.model == forward::kModelName) {
+    // The forward model's map is learned by EM, its own rule (docs/forward-model.md).
+    if (c.settings.rule != forward::kRuleName) {
+      throw UsageError(flag + "the forward model learns its map by EM: write " +
+                       forward::kModelName + "/" + forward::kRuleName);
+    }
+    c.settings.parameters = forward::defaultForwardParameters();
+  } else if (!makeSensorModel(c.settings.model)) {
     std::string names;
     for (const std::string& n : sensorModelNames()) names += (names.empty() ? "" : ", ") + n;
-    throw UsageError(flag + "unknown model '" + c.settings.model + "'; choose one of " + names);
+    throw UsageError(flag + "unknown model '" + c.settings.model + "'; choose one of " + names +
+                     ", " + forward::kModelName);
   }
-  if (!makeUpdateRule(c.settings.rule)) {
-    std::string names;
-    for (const std::string& n : updateRuleNames()) names += (names.empty() ? "" : ", ") + n;
-    throw UsageError(flag + "unknown rule '" + c.settings.rule + "'; choose one of " + names);
+  if (c.settings.model != forward::kModelName) {
+    if (!makeUpdateRule(c.settings.rule)) {
+      std::string names;
+      for (const std::string& n : updateRuleNames()) names += (names.empty() ? "" : ", ") + n;
+      throw UsageError(flag + "unknown rule '" + c.settings.rule + "'; choose one of " + names);
+    }
+    const Compatibility compatible = compatibility(c.settings.model, c.settings.rule);
+    if (!compatible.allowed) throw UsageError(flag + compatible.reason);
+    c.settings.parameters = defaultParameters(c.settings.model, c.settings.rule);
   }
-  const Compatibility compatible = compatibility(c.settings.model, c.settings.rule);
-  if (!compatible.allowed) throw UsageError(flag + compatible.reason);
-  c.settings.parameters = defaultParameters(c.settings.model, c.settings.rule);
   if (colon == std::string::npos) return c;
   std::vector<std::string> seen;
   std::stringstream list(text.substr(colon + 1));

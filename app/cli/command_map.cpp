@@ -13,7 +13,6 @@
 #include "sonargrid/data/scan_poses.h"
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/forward/forward_em.h"
-#include "stop_signal.h"
 #include "thread_flags.h"
 
 namespace sg::cli {
@@ -107,21 +106,20 @@ GridSpec fittingGridOf(const Dataset& data, const MapOptions& o, const std::stri
 namespace {
 
 // The forward model's map: EM over the whole log (docs/forward-model.md), with a line of progress
-// per iteration on stderr; Ctrl-C stops it (no map).
+// per iteration on stderr. Ctrl-C ends the process as it would any mapping: no file is written
+// before the map is made. (`compare` builds several maps at once, so no handler is installed here.)
 BuiltMap buildForwardMap(const Dataset& data, const MapOptions& o, const std::string& logPath,
                          const GridSpec& grid, BuiltMap out) {
   const forward::ForwardSettings settings = forward::settingsOf(o.settings.parameters);
-  const StopOnSignal stop;
   try {
     const auto t0 = std::chrono::steady_clock::now();
     const std::vector<forward::ForwardBeam> beams =
         forward::beamsOf(data, o.settings.pose, o.until);
     forward::EmResult em =
-        forward::runEm(beams, grid, settings, &stop.flag(), [&](const forward::EmProgress& p) {
+        forward::runEm(beams, grid, settings, nullptr, [&](const forward::EmProgress& p) {
           std::cerr << "sonargrid-cli: EM iteration " << p.iteration << " of at most " << p.cap
                     << ": log-likelihood " << std::setprecision(10) << p.logLikelihood << '\n';
         });
-    if (em.cancelled) throw InputError(logPath + ": EM stopped by a signal; no map was made");
     out.elapsedMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     out.readings = em.readings;

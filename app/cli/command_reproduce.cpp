@@ -20,6 +20,7 @@
 #include "reproduce/reproduce.h"
 #include "sonargrid/base/atomic_file.h"
 #include "sonargrid/export/map_export.h"
+#include "sonargrid/forward/forward_em.h"
 #include "sonargrid/reference/read_reference.h"
 #include "sonargrid/sim/physics_parameters.h"
 #include "thread_flags.h"
@@ -69,7 +70,8 @@ MapperSettings settingsFor(const std::string& model, const std::string& rule, co
   s.model = model;
   s.rule = rule;
   s.pose = PoseSource::Odometry;  // the maps the robot itself could build (docs/reproduction.md)
-  s.parameters = defaultParameters(model, rule);
+  s.parameters = model == forward::kModelName ? forward::defaultForwardParameters()
+                                              : defaultParameters(model, rule);
   if (s.parameters.has("omega")) s.parameters.set("omega", radToDeg(ring.apertureRad));
   for (const auto& [name, value] : overrides) s.parameters.set(name, value);
   return s;
@@ -78,10 +80,18 @@ MapperSettings settingsFor(const std::string& model, const std::string& rule, co
 OccupancyMap mapLog(const Dataset& data, const fs::path& path, const GridSpec& grid,
                     const MapperSettings& settings, FootprintObserver* observer) {
   try {
+    if (settings.model == forward::kModelName) {  // EM over the whole log (docs/forward-model.md)
+      if (observer) throw InputError("the forward model writes no per-reading footprints");
+      return forward::runEm(forward::beamsOf(data, settings.pose), grid,
+                            forward::settingsOf(settings.parameters))
+          .map;
+    }
     Mapper mapper(data.ring, grid, settings);
     mapper.setObserver(observer);
     mapper.mapDataset(data);
     return mapper.snapshot();
+  } catch (const forward::ForwardError& e) {
+    throw InputError(path.string() + ": " + e.what());
   } catch (const MapperError& e) {
     throw InputError(path.string() + ": " + e.what());
   }
@@ -211,7 +221,7 @@ fs::path defaultDatasets() {
 int runReproduce(Arguments& args) {
   namespace fs = reproduce::fs;
   std::optional<std::string> paper;
-  for (const char* name : {"raschke1990", "osullivan", "arafat"}) {
+  for (const char* name : {"raschke1990", "osullivan", "arafat", "thrun2003"}) {
     if (!args.flag(name)) continue;
     if (paper) throw UsageError("reproduce takes one paper, got " + *paper + " and " + name);
     paper = name;
@@ -238,9 +248,9 @@ int runReproduce(Arguments& args) {
       args.finish();
     } catch (const UsageError& e) {
       throw UsageError(std::string(e.what()) +
-                       "; reproduce takes a paper: raschke1990, osullivan or arafat");
+                       "; reproduce takes a paper: raschke1990, osullivan, arafat or thrun2003");
     }
-    throw UsageError("reproduce needs a paper: raschke1990, osullivan or arafat");
+    throw UsageError("reproduce needs a paper: raschke1990, osullivan, arafat or thrun2003");
   }
   args.finish();
   if (*paper != "arafat" && ctx.sets != 0) throw UsageError("--sets shapes the arafat sweep only");
@@ -256,10 +266,12 @@ int runReproduce(Arguments& args) {
   const auto runPaper = [&](const reproduce::Context& c) {
     if (*paper == "raschke1990") return reproduce::runRaschke1990(c);
     if (*paper == "osullivan") return reproduce::runOSullivan(c);
+    if (*paper == "thrun2003") return reproduce::runThrun2003(c);
     return reproduce::runArafat(c);
   };
   const std::vector<std::string> folders =
       *paper == "raschke1990" ? std::vector<std::string>{"raschke-multi", "raschke-single"}
+      : *paper == "thrun2003" ? std::vector<std::string>{"arafat-room", "raschke-multi"}
                               : std::vector<std::string>{"arafat-room"};
   reproduce::Json presetResults = reproduce::Json::object();
   for (const std::string& preset : presets) {

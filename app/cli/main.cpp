@@ -41,7 +41,7 @@ commands:
       --route in-motion|stop-and-scan|u-turn [--route-file FILE] [--stops N]
       [--duration S] [--seed N] [--drift on|off] --out LOG.sglog
                              simulate a sonar log in a reference-map world
-  reproduce raschke1990|osullivan|arafat --out DIR [--datasets DIR] [--json]
+  reproduce raschke1990|osullivan|arafat|thrun2003 --out DIR [--datasets DIR] [--json]
       [--progress] [--sets N] [--threads N]
                              rerun a paper's experiment on the bundled datasets: tables
                              (Markdown, CSV) and figures (PNG) in DIR/PAPER

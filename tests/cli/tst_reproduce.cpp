@@ -944,6 +944,39 @@ class TestReproduce : public QObject {
     QVERIFY2(r.err.contains(named.toUtf8()), r.err.constData());
   }
 
+  // docs/forward-model.md, "Comparison": each preset's table, as `reproduce thrun2003` writes it
+  // from fresh runs, is in the page word for word under its preset's heading; the forward model's
+  // wins the page states hold in the summary.
+  void bundledThrun2003AsDocumented() {
+    const QJsonObject j = bundledSummary("thrun2003");
+    QCOMPARE(j["presets"].toObject().keys(), (QStringList{"clean", "default", "harsh"}));
+    const QString page = readText(QStringLiteral(SONARGRID_DOCS "/forward-model.md"));
+    for (const char* preset : kPresets) {
+      const QString table =
+          readText(paperDir(bundledDir("thrun2003"), preset, "thrun2003") + "/comparison.md");
+      const qsizetype rows = table.indexOf("| dataset |");
+      QVERIFY(rows > 0);
+      const QString heading = QString("**`%1` physics**\n\n").arg(preset);
+      QVERIFY2(page.contains(heading + table.mid(rows)),
+               qPrintable(QString("docs/forward-model.md lacks the %1 table:\n%2")
+                              .arg(preset, table.mid(rows))));
+    }
+    // "Under clean physics and true poses the forward model has the lowest IOP and the highest
+    // correlation of every configuration, and blocks no doorway" (the page).
+    const QJsonObject clean = j["presets"]["clean"].toObject();
+    for (const char* dataset : {"arafat-room", "raschke-multi"}) {
+      const QJsonObject rows = clean[dataset]["truth"].toObject();
+      const QJsonObject em = rows["forward-em/em"].toObject();
+      QCOMPARE(em["path_false_negative_pct"].toDouble(), 0.0);
+      for (const QString& config : rows.keys()) {
+        if (config == "forward-em/em") continue;
+        QVERIFY2(em["iop_mm"].toDouble() < rows[config]["iop_mm"].toDouble(), qPrintable(config));
+        QVERIFY2(em["correlation_pct"].toDouble() > rows[config]["correlation_pct"].toDouble(),
+                 qPrintable(config));
+      }
+    }
+  }
+
   // A missing dataset file is input the user must fix: status 2, the file named.
   void missingDataset() {
     QTemporaryDir empty;

@@ -38,6 +38,9 @@ struct Context {
 Json runRaschke1990(const Context& ctx);
 Json runOSullivan(const Context& ctx);
 Json runArafat(const Context& ctx);
+// Not one of the three papers: the forward model learned by EM (Thrun 2003) against every inverse
+// model with its paper's rule (docs/forward-model.md, "Comparison").
+Json runThrun2003(const Context& ctx);
 
 // ---- shared by the three (and `bench`)
 
