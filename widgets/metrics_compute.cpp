@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dmin_overlay.h"
+#include "sonargrid/forward/catalog.h"
 #include "sonargrid/metrics/index_of_performance.h"
 #include "sonargrid/reference/actual_position_grid.h"
 #include "sonargrid/sweep/sweep_grid.h"
@@ -200,7 +201,12 @@ std::optional<MetricsResult> computeMetrics(const MetricsInput& in,
   }
   if (cancelled()) return std::nullopt;
   const bool twoRuns = in.secondRun != nullptr;
-  if (in.run && (in.goodness || twoRuns)) {
+  if (in.run && (in.goodness || twoRuns) && forward::isForwardModel(in.settings.model)) {
+    out.goodnessError = QStringLiteral(
+        "VSDNS, derivative noise and the two-run comparison replay an inverse "
+        "model's evidence reading by reading; the forward model learns its map by "
+        "EM and has none (docs/forward-model.md)");
+  } else if (in.run && (in.goodness || twoRuns)) {
     try {
       SetEvaluationInput e;
       e.run = in.run.get();

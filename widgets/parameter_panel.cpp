@@ -22,6 +22,7 @@
 #include <functional>
 #include <initializer_list>
 
+#include "sonargrid/forward/catalog.h"
 #include "sonargrid/params/presets.h"
 
 namespace sg::ui {
@@ -130,7 +131,7 @@ QString presetToolTip(const Preset& p) {
 // accepts (the rest stay at their defaults).
 ParameterSet carriedOver(const std::string& model, const std::string& rule,
                          const ParameterSet& from) {
-  ParameterSet p = defaultParameters(model, rule);
+  ParameterSet p = forward::mapDefaultParameters(model, rule);
   for (const auto& [name, value] : from.values()) {
     if (!p.has(name)) continue;
     try {
@@ -144,21 +145,19 @@ ParameterSet carriedOver(const std::string& model, const std::string& rule,
 }  // namespace
 
 ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
-  settings_.parameters = defaultParameters(settings_.model, settings_.rule);
+  settings_.parameters = forward::mapDefaultParameters(settings_.model, settings_.rule);
 
   model_ = new QComboBox(this);
   model_->setObjectName(QStringLiteral("modelChooser"));
-  for (const std::string& name : sensorModelNames()) {
-    const ModelInfo& info = sensorModelInfo(name);
-    model_->addItem(qs(info.title), qs(name));
-    model_->setItemData(model_->count() - 1, qs(info.source), Qt::ToolTipRole);
+  // The inverse models, then the forward model learned by EM (forward/catalog.h).
+  for (const std::string& name : forward::mapModelNames()) {
+    model_->addItem(qs(forward::mapModelTitle(name)), qs(name));
+    model_->setItemData(model_->count() - 1, qs(forward::mapModelSource(name)), Qt::ToolTipRole);
   }
   rule_ = new QComboBox(this);
   rule_->setObjectName(QStringLiteral("ruleChooser"));
-  for (const std::string& name : updateRuleNames()) {
-    const RuleInfo& info = updateRuleInfo(name);
-    rule_->addItem(qs(info.title), qs(name));
-  }
+  for (const std::string& name : forward::mapRuleNames())
+    rule_->addItem(qs(forward::mapRuleTitle(name)), qs(name));
   preset_ = new QComboBox(this);
   preset_->setObjectName(QStringLiteral("presetChooser"));
   preset_->addItem(tr("Custom"), QString());
@@ -246,7 +245,7 @@ QDoubleSpinBox* ParameterPanel::spinBoxFor(const QString& name) const {
 void ParameterPanel::setSettings(const MapperSettings& settings, bool ruleNamed) {
   MapperSettings next = settings;
   try {
-    const Compatibility c = compatibility(settings.model, settings.rule);
+    const Compatibility c = forward::mapCompatibility(settings.model, settings.rule);
     if (!c.allowed) throw MapperError(settings.model + " with " + settings.rule + ": " + c.reason);
     next.parameters = carriedOver(settings.model, settings.rule, settings.parameters);
   } catch (const std::exception& e) {
@@ -292,17 +291,17 @@ void ParameterPanel::setSettings(const MapperSettings& settings, bool ruleNamed)
 
 QString ParameterPanel::ruleChangeNote(const std::string& fromRule, const std::string& model,
                                        const std::string& toRule) const {
-  const Compatibility c = compatibility(model, fromRule);
+  const Compatibility c = forward::mapCompatibility(model, fromRule);
   const QString why =
       !c.allowed ? qs(c.reason)
-      : toRule == sensorModelInfo(model).preferredRule
+      : toRule == forward::mapModelPreferredRule(model)
           ? tr("%1 is the rule its paper pairs with %2 (%3); choose another "
                "rule below to override it")
-                .arg(qs(updateRuleInfo(toRule).title), qs(sensorModelInfo(model).title),
-                     qs(sensorModelInfo(model).source))
+                .arg(qs(forward::mapRuleTitle(toRule)), qs(forward::mapModelTitle(model)),
+                     qs(forward::mapModelSource(model)))
           : QString();
   return tr("Rule changed from %1 to %2%3")
-      .arg(qs(updateRuleInfo(fromRule).title), qs(updateRuleInfo(toRule).title),
+      .arg(qs(forward::mapRuleTitle(fromRule)), qs(forward::mapRuleTitle(toRule)),
            why.isEmpty() ? QString() : QStringLiteral(": ") + why);
 }
 
@@ -315,7 +314,7 @@ void ParameterPanel::showRemapTime(double milliseconds) {
 }
 
 void ParameterPanel::resetToDefaults() {
-  const ParameterSet defaults = defaultParameters(settings_.model, settings_.rule);
+  const ParameterSet defaults = forward::mapDefaultParameters(settings_.model, settings_.rule);
   {
     const QSignalBlocker block(preset_);
     preset_->setCurrentIndex(0);
@@ -361,11 +360,11 @@ void ParameterPanel::chooseModel(int index) {
 std::string ParameterPanel::ruleForModel(const std::string& model, const std::string& current) {
   // The paper's pairing first (ModelInfo::preferredRule), then the current rule, then the first
   // rule that fits.
-  const std::string& preferred = sensorModelInfo(model).preferredRule;
-  if (!preferred.empty() && compatibility(model, preferred).allowed) return preferred;
-  if (compatibility(model, current).allowed) return current;
-  for (const std::string& r : updateRuleNames())
-    if (compatibility(model, r).allowed) return r;
+  const std::string preferred = forward::mapModelPreferredRule(model);
+  if (!preferred.empty() && forward::mapCompatibility(model, preferred).allowed) return preferred;
+  if (forward::mapCompatibility(model, current).allowed) return current;
+  for (const std::string& r : forward::mapRuleNames())
+    if (forward::mapCompatibility(model, r).allowed) return r;
   return current;
 }
 
@@ -373,7 +372,7 @@ void ParameterPanel::chooseRule(int index) {
   if (updating_ || index < 0) return;
   const std::string rule = rule_->itemData(index).toString().toStdString();
   if (rule == settings_.rule) return;
-  const Compatibility c = compatibility(settings_.model, rule);
+  const Compatibility c = forward::mapCompatibility(settings_.model, rule);
   if (!c.allowed) {
     // A disabled item cannot be picked by hand; refuse it when set programmatically too.
     const QSignalBlocker block(rule_);
@@ -397,10 +396,10 @@ void ParameterPanel::refreshRuleAvailability() {
   auto* items = qobject_cast<QStandardItemModel*>(rule_->model());
   for (int i = 0; i < rule_->count(); ++i) {
     const std::string rule = rule_->itemData(i).toString().toStdString();
-    const Compatibility c = compatibility(settings_.model, rule);
+    const Compatibility c = forward::mapCompatibility(settings_.model, rule);
     QStandardItem* item = items->item(i);
     item->setEnabled(c.allowed);
-    item->setToolTip(c.allowed ? qs(updateRuleInfo(rule).source)
+    item->setToolTip(c.allowed ? qs(forward::mapRuleSource(rule))
                                : tr("Not with %1: %2").arg(qs(settings_.model), qs(c.reason)));
   }
 }
@@ -412,14 +411,18 @@ void ParameterPanel::rebuildRows() {
     dragging_ = false;
     emit dragFinished();
   }
-  const ModelInfo& model = sensorModelInfo(settings_.model);
-  const RuleInfo& rule = updateRuleInfo(settings_.rule);
-  const QString caveat = qs(sensorModelCaveat(settings_.model));
+  const bool forwardModel = forward::isForwardModel(settings_.model);
+  const QString caveat =
+      forwardModel
+          ? tr("A batch method: every change runs EM over the whole log, with its progress in "
+               "the status bar (Stop EM ends it); the map shown stays until the new one is ready.")
+          : qs(sensorModelCaveat(settings_.model));
   caveat_->setText(caveat);
   caveat_->setVisible(!caveat.isEmpty());
   // Short headings (the choosers above show the titles): a long one would widen the dock.
-  addRows(model.parameters, tr("Model (%1)").arg(qs(model.name)));
-  addRows(rule.parameters, tr("Rule (%1)").arg(qs(rule.name)));
+  addRows(forward::mapModelParameters(settings_.model), tr("Model (%1)").arg(qs(settings_.model)));
+  if (!forwardModel)  // EM has no parameters of its own: the model's carry its cap
+    addRows(forward::mapRuleParameters(settings_.rule), tr("Rule (%1)").arg(qs(settings_.rule)));
   // The rows are never squeezed or cut: the panel (and its dock) is at least as wide as they need
   // with the vertical scroll bar beside them.
   scroll_->setMinimumWidth(rowsHost_->minimumSizeHint().width() +

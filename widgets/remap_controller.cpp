@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
+#include <functional>
 #include <optional>
 
 #include "sonargrid/data/scan_poses.h"
+#include "sonargrid/forward/catalog.h"
+#include "sonargrid/forward/forward_em.h"
 
 namespace sg::ui {
 
@@ -39,6 +42,7 @@ struct RemapController::Request {
   std::shared_ptr<std::atomic<bool>> cancel;
   quint64 generation = 0;
   bool append = false;  // scansAppended(): clears appendWaiting_ when it starts
+  std::function<void(const forward::EmProgress&)> progress;  // the forward model's EM
 };
 
 struct RemapController::Outcome {
@@ -196,10 +200,27 @@ void RemapController::run(bool preview) {
   cancelRunning_ = cancel;
   const quint64 generation = ++generation_;
   lastRemapGeneration_ = generation;
-  // Previews are of loaded logs: a live map is continued, which is already quick.
-  if (preview && !live_) startPreview(generation, cancel);  // queued first, so it runs first
-  enqueue(Request{source_, live_, settings_, cellSize_, until_, cancel, generation, false});
+  // Previews are of loaded logs: a live map is continued, which is already quick. The forward
+  // model's EM has none: a coarser grid is another EM problem, no quicker to read.
+  const bool forwardModel = forward::isForwardModel(settings_.model);
+  if (preview && !live_ && !forwardModel) startPreview(generation, cancel);  // queued first
+  Request request{source_, live_, settings_, cellSize_, until_, cancel, generation, false, {}};
+  if (forwardModel) {
+    request.progress = [this, generation](const forward::EmProgress& p) {
+      QMetaObject::invokeMethod(
+          this,
+          [this, p, generation] {
+            emit emProgress(p.iteration, p.cap, p.logLikelihood, generation);
+          },
+          Qt::QueuedConnection);
+    };
+  }
+  enqueue(std::move(request));
   emit started(generation);
+}
+
+void RemapController::stop() {
+  if (cancelRunning_) cancelRunning_->store(true);
 }
 
 void RemapController::scansAppended() {
@@ -208,8 +229,8 @@ void RemapController::scansAppended() {
   if (appendWaiting_.exchange(true)) return;
   // The running run's cancel flag: a re-map asked for later stops this run too.
   if (!cancelRunning_) cancelRunning_ = std::make_shared<std::atomic<bool>>(false);
-  enqueue(
-      Request{source_, true, settings_, cellSize_, until_, cancelRunning_, ++generation_, true});
+  enqueue(Request{
+      source_, true, settings_, cellSize_, until_, cancelRunning_, ++generation_, true, {}});
 }
 
 void RemapController::enqueue(Request request) {
@@ -224,6 +245,7 @@ void RemapController::enqueue(Request request) {
       },
       [this, request = std::move(request), warm = warm_](const std::atomic<bool>*) {
         try {
+          if (forward::isForwardModel(request.settings.model)) return mapForward(*warm, request);
           return request.live ? mapLive(*warm, request) : mapLoaded(*warm, request);
         } catch (...) {
           warm->mapper.reset();
@@ -291,6 +313,36 @@ RemapController::Outcome RemapController::mapLoaded(WarmMapper& warm, const Requ
   warm.settings = settings;
   warm.cellSize = request.cellSize;
   warm.until = until;
+  return out;
+}
+
+RemapController::Outcome RemapController::mapForward(WarmMapper& warm, const Request& request) {
+  if (request.live) {
+    throw forward::ForwardError(
+        "the forward model learns its map by EM over a whole log; map a live link with an inverse "
+        "model, or record it and open the log");
+  }
+  const std::shared_ptr<const Dataset> log = request.source->view();
+  const Dataset& data = *log;
+  const MapperSettings& settings = request.settings;
+  if (settings.pose == PoseSource::Truth && !anyScanHasPose(data, PoseSource::Truth))
+    throw MapperError(std::string(kNoTruePose) + "; map with odometry");
+  // The next inverse-model run starts afresh.
+  warm.mapper.reset();
+  warm.data.reset();
+  warm.source.reset();
+  Outcome out;
+  const auto t0 = std::chrono::steady_clock::now();
+  forward::EmResult em = forward::runEm(forward::beamsOf(data, settings.pose, request.until),
+                                        data.fittingGrid(settings.pose, request.cellSize),
+                                        forward::settingsOf(settings.parameters),
+                                        request.cancel.get(), request.progress);
+  if (em.cancelled) {
+    out.interrupted = true;
+    return out;
+  }
+  out.map = std::make_shared<const OccupancyMap>(std::move(em.map));
+  out.ms = msSince(t0);
   return out;
 }
 

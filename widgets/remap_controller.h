@@ -22,6 +22,9 @@
 // cells `factor` times larger, a fraction of the work, and delivered as previewed(); the full map
 // follows as mapped(). A dragged slider then moves the picture at once on any log; the full map
 // arrives when the slider rests long enough for it. Previews are never cancelled() or failed().
+//
+// The forward model (forward/forward_em.h) is a batch method: each change runs EM over the whole
+// loaded log, with emProgress() after each iteration, and no preview; a live link is refused.
 
 #include <QObject>
 #include <QString>
@@ -88,6 +91,9 @@ class RemapController : public QObject {
   void remap();
   // The live source has new scans: fold them into the map and deliver it (mapped(), incremental).
   void scansAppended();
+  // Stops the running re-map (the forward model's EM, which takes seconds to a minute): it is
+  // reported cancelled() and the map shown stays.
+  void stop();
 
  signals:
   // The newest run finished: its map, the mapping time in ms, its generation and whether it
@@ -105,12 +111,17 @@ class RemapController : public QObject {
   // A quick map of the newest settings on coarser cells, ahead of its mapped() (setPreview).
   void previewed(std::shared_ptr<const sg::OccupancyMap> map, double elapsedMs, quint64 generation);
   void busyChanged(bool busy);
+  // The forward model's EM (docs/forward-model.md) finished an iteration of this generation's run:
+  // `iteration` of at most `cap`, and the log-likelihood of the map so far. A slider change starts
+  // a new EM run; the map shown stays until mapped() brings the new one.
+  void emProgress(int iteration, int cap, double logLikelihood, quint64 generation);
 
  private:
   struct WarmMapper;
   struct Request;
   struct Outcome;
   static Outcome mapLoaded(WarmMapper& warm, const Request& request);
+  static Outcome mapForward(WarmMapper& warm, const Request& request);
   static Outcome mapLive(WarmMapper& warm, const Request& request);
   void finish(quint64 generation, const Outcome& outcome);
   void run(bool preview);

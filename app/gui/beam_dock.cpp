@@ -8,16 +8,19 @@
 #include <QVBoxLayout>
 
 #include "beam_model_view.h"
+#include "forward_range_view.h"
+#include "sonargrid/forward/catalog.h"
 
 namespace sg::app {
 
 BeamDock::BeamDock(const MapperSettings& settings, QWidget* parent)
     : QWidget(parent),
       view_(new ui::BeamModelView(this)),
+      forward_(new ui::ForwardRangeView(this)),
       chooser_(new QComboBox(this)),
       settings_(settings),
       timer_(new QTimer(this)) {
-  view_->setSettings(settings);
+  settings_ = MapperSettings{};  // the beam view's own defaults until showSettings() below
   chooser_->setObjectName(QStringLiteral("readingChooser"));
   chooser_->setToolTip(
       tr("The reading of the current scan whose beam is drawn; its beam "
@@ -38,6 +41,9 @@ BeamDock::BeamDock(const MapperSettings& settings, QWidget* parent)
   layout->setContentsMargins(0, 4, 0, 0);
   layout->addLayout(row);
   layout->addWidget(view_, 1);
+  layout->addWidget(forward_, 1);
+  settings_ = settings;
+  showSettings();
 
   timer_->setSingleShot(true);
   timer_->setInterval(kIntervalMs);
@@ -67,6 +73,7 @@ std::optional<std::size_t> BeamDock::showReadings(const std::vector<Reading>& re
   shown_ = shown ? std::optional<std::size_t>(shown->sonar) : std::nullopt;
   // No echo: the model's picture of a reading at the maximum range.
   if (shown) view_->setRange(shown->echo() ? shown->range : maxRange);
+  if (!shown) forward_->clear();
   return shown_;
 }
 
@@ -91,8 +98,8 @@ void BeamDock::clearReadings() {
 
 void BeamDock::setSettings(const MapperSettings& settings, bool paced) {
   settings_ = settings;
-  if (!paced) {
-    view_->setSettings(settings);
+  if (!paced || forward::isForwardModel(settings.model)) {
+    showSettings();
     return;
   }
   pending_ = true;
@@ -107,7 +114,18 @@ void BeamDock::showSettings() {
   timer_->stop();
   pending_ = false;
   shownAt_.restart();
-  view_->setSettings(settings_);
+  const bool forwardModel = forward::isForwardModel(settings_.model);
+  view_->setVisible(!forwardModel);
+  forward_->setVisible(forwardModel);
+  // The beam model view draws an inverse model; the forward model's picture needs its map
+  // (showForward()).
+  if (!forwardModel) view_->setSettings(settings_);
+}
+
+void BeamDock::showForward(const forward::ForwardBeam& beam,
+                           std::shared_ptr<const OccupancyMap> map) {
+  if (!forward::isForwardModel(settings_.model)) return;
+  forward_->show(beam, std::move(map), forward::settingsOf(settings_.parameters));
 }
 
 }  // namespace sg::app

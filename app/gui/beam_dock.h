@@ -7,18 +7,22 @@
 
 #include <QElapsedTimer>
 #include <QWidget>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "sonargrid/data/dataset.h"
 #include "sonargrid/engine/mapper.h"
+#include "sonargrid/engine/occupancy_map.h"
+#include "sonargrid/forward/forward_em.h"
 
 class QComboBox;
 class QTimer;
 
 namespace sg::ui {
 class BeamModelView;
-}
+class ForwardRangeView;
+}  // namespace sg::ui
 
 namespace sg::app {
 
@@ -29,6 +33,11 @@ class BeamDock : public QWidget {
   explicit BeamDock(const MapperSettings& settings, QWidget* parent = nullptr);
 
   ui::BeamModelView* view() const { return view_; }
+  // The forward model's picture (forward_range_view.h), shown instead of the beam model view
+  // while the settings are the forward model's: it has no inverse model to draw.
+  ui::ForwardRangeView* forwardView() const { return forward_; }
+  // The shown reading under the forward model's map (see forwardView()).
+  void showForward(const forward::ForwardBeam& beam, std::shared_ptr<const OccupancyMap> map);
   // The sonar whose reading the view shows now.
   std::optional<std::size_t> sonar() const { return shown_; }
 
@@ -58,6 +67,7 @@ class BeamDock : public QWidget {
 
   static constexpr int kIntervalMs = 150;
   ui::BeamModelView* view_;
+  ui::ForwardRangeView* forward_;
   QComboBox* chooser_;
   std::optional<std::size_t> chosen_;  // the user's pick; none: the first reading with echo
   std::optional<std::size_t> shown_;   // what the view shows now

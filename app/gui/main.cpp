@@ -13,6 +13,7 @@
 #include <QPixmap>
 #include <QScreen>
 #include <QTimer>
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -29,6 +30,8 @@
 #include "sonargrid/base/concurrency.h"
 #include "sonargrid/engine/sensor_model.h"
 #include "sonargrid/engine/update_rule.h"
+#include "sonargrid/forward/catalog.h"
+#include "sonargrid/forward/forward_em.h"
 
 namespace {
 
@@ -48,18 +51,23 @@ sg::MapperSettings settingsFrom(const QCommandLineParser& args) {
   const bool newPair = args.isSet("model") || args.isSet("rule");
   if (args.isSet("model")) s.model = args.value("model").toStdString();
   if (args.isSet("rule")) s.rule = args.value("rule").toStdString();
-  if (!sg::makeSensorModel(s.model))
+  // The forward model's rule is EM itself: --model forward-em alone names the pair.
+  if (args.isSet("model") && !args.isSet("rule") && sg::forward::isForwardModel(s.model))
+    s.rule = sg::forward::kRuleName;
+  const std::vector<std::string> models = sg::forward::mapModelNames();
+  const std::vector<std::string> rules = sg::forward::mapRuleNames();
+  if (std::find(models.begin(), models.end(), s.model) == models.end())
     throw UsageError{QStringLiteral("unknown --model '%1'; choose one of %2")
-                         .arg(QString::fromStdString(s.model), joined(sg::sensorModelNames()))};
-  if (!sg::makeUpdateRule(s.rule))
+                         .arg(QString::fromStdString(s.model), joined(models))};
+  if (std::find(rules.begin(), rules.end(), s.rule) == rules.end())
     throw UsageError{QStringLiteral("unknown --rule '%1'; choose one of %2")
-                         .arg(QString::fromStdString(s.rule), joined(sg::updateRuleNames()))};
-  const sg::Compatibility c = sg::compatibility(s.model, s.rule);
+                         .arg(QString::fromStdString(s.rule), joined(rules))};
+  const sg::Compatibility c = sg::forward::mapCompatibility(s.model, s.rule);
   if (!c.allowed)
     throw UsageError{QStringLiteral("model '%1' cannot be used with rule '%2': %3")
                          .arg(QString::fromStdString(s.model), QString::fromStdString(s.rule),
                               QString::fromStdString(c.reason))};
-  if (newPair) s.parameters = sg::defaultParameters(s.model, s.rule);
+  if (newPair) s.parameters = sg::forward::mapDefaultParameters(s.model, s.rule);
   QStringList seen;
   for (const QString& kv : args.values("set")) {
     const qsizetype eq = kv.indexOf('=');

@@ -12,6 +12,7 @@
 #include <QSettings>
 #include <QStatusBar>
 #include <QTimer>
+#include <algorithm>
 #include <iostream>
 
 #include "autosave.h"
@@ -29,6 +30,7 @@
 #include "robot/robot_dock.h"
 #include "sonargrid/engine/sensor_model.h"
 #include "sonargrid/engine/update_rule.h"
+#include "sonargrid/forward/catalog.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/reference/read_reference.h"
 #include "status_report.h"
@@ -117,6 +119,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
             // A project's saved view replaces the fit of its first map.
             if (pendingView_) view_->setView(*std::exchange(pendingView_, std::nullopt));
             onMapped(ms);
+            showForwardPrediction();  // the forward model's picture follows its new map
             // The panel shows what a re-map of the log costs, not a continuation while playing.
             if (!incremental) panel_->showRemapTime(ms);
           });
@@ -137,6 +140,19 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   });
   connect(remap_, &ui::RemapController::busyChanged, this, [this](bool busy) {
     if (busy) status_->mapping();
+    if (!busy) status_->emEnded();  // done, stopped or failed
+  });
+  // The forward model's EM: its iterations in the status bar; Stop EM ends it.
+  connect(remap_, &ui::RemapController::emProgress, this,
+          [this](int iteration, int cap, double logLikelihood, quint64 generation) {
+            if (generation == remap_->latestGeneration())
+              status_->emProgress(iteration, cap, logLikelihood);
+          });
+  connect(status_, &StatusReport::stopEmClicked, remap_, &ui::RemapController::stop);
+  connect(remap_, &ui::RemapController::cancelled, this, [this](quint64 generation, bool stopped) {
+    if (stopped && generation == remap_->latestGeneration() &&
+        forward::isForwardModel(remap_->settings().model))
+      status_->emStopped();
   });
   connect(timeline_, &ui::Timeline::timeChanged, this, &MainWindow::onTimeChanged);
   connect(timeline_, &ui::Timeline::playingChanged, this,
@@ -165,6 +181,10 @@ const std::shared_ptr<const sg::Dataset>& MainWindow::dataset() const {
 
 ui::BeamModelView* MainWindow::beamModelView() const {
   return beamDock_->view();
+}
+
+ui::ForwardRangeView* MainWindow::forwardRangeView() const {
+  return beamDock_->forwardView();
 }
 
 std::optional<std::size_t> MainWindow::beamSonar() const {
@@ -265,7 +285,7 @@ void MainWindow::showSettings() {
       (settings.model != actions_.menuSettings.model ||
        settings.rule != actions_.menuSettings.rule || settings.pose != actions_.menuSettings.pose))
     rebuildMappingMenu();
-  view_->setNativeName(QString::fromStdString(updateRuleInfo(settings.rule).nativeName));
+  view_->setNativeName(QString::fromStdString(forward::mapRuleNativeName(settings.rule)));
   panel_->setSettings(settings);
   // Paced while a log re-maps (BeamDock::setSettings).
   beamDock_->setSettings(settings, document_->dataset() != nullptr);
@@ -295,14 +315,17 @@ sg::MapperSettings MainWindow::lastSettings() {
   sg::MapperSettings out;
   const std::string model = s.value("mapping/model", "himm").toString().toStdString();
   const std::string rule = s.value("mapping/rule", "himm").toString().toStdString();
-  if (makeSensorModel(model) && makeUpdateRule(rule) && compatibility(model, rule).allowed) {
+  const std::vector<std::string> models = forward::mapModelNames(), rules = forward::mapRuleNames();
+  if (std::find(models.begin(), models.end(), model) != models.end() &&
+      std::find(rules.begin(), rules.end(), rule) != rules.end() &&
+      forward::mapCompatibility(model, rule).allowed) {
     out.model = model;
     out.rule = rule;
   } else {
     out.model = "himm";
     out.rule = "himm";
   }
-  out.parameters = defaultParameters(out.model, out.rule);
+  out.parameters = forward::mapDefaultParameters(out.model, out.rule);
   s.beginGroup("mapping/parameters");
   for (const QString& key : s.childKeys()) {
     try {
@@ -379,8 +402,8 @@ void MainWindow::updateSummary() {
                .arg(run->ring.size())
                .arg(QString::fromStdString(run->ring.robot).toHtmlEscaped());
     html += QStringLiteral("<hr><b>%1</b><br>× <b>%2</b><br>pose: %3")
-                .arg(QString::fromStdString(sensorModelInfo(settings.model).title).toHtmlEscaped())
-                .arg(QString::fromStdString(updateRuleInfo(settings.rule).title).toHtmlEscaped())
+                .arg(QString::fromStdString(forward::mapModelTitle(settings.model)).toHtmlEscaped())
+                .arg(QString::fromStdString(forward::mapRuleTitle(settings.rule)).toHtmlEscaped())
                 .arg(settings.pose == PoseSource::Truth ? tr("true pose") : tr("odometry"));
     if (map) {
       html += QStringLiteral("<hr>grid %1 × %2 cells of %3 m<br>%4 cells filled<br>re-map %5 ms")

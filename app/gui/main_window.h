@@ -29,6 +29,7 @@ namespace sg::ui {
 class BeamModelView;
 class CellInspector;
 class CellPicker;
+class ForwardRangeView;
 class ParameterPanel;
 class RemapController;
 class Timeline;
@@ -112,6 +113,9 @@ class MainWindow : public QMainWindow {
   ui::RemapController* remapController() const { return remap_; }
   ui::ParameterPanel* parameterPanel() const { return panel_; }
   ui::BeamModelView* beamModelView() const;
+  // The beam dock's picture of the forward model's prediction (shown instead of the beam model
+  // view while the settings are the forward model's).
+  ui::ForwardRangeView* forwardRangeView() const;
   // The sonar whose reading of the current scan the beam view shows (highlighted in the grid).
   std::optional<std::size_t> beamSonar() const;
   // Shows sonar `sonar`'s reading of the current scan in the beam view from now on (while the
@@ -165,6 +169,9 @@ class MainWindow : public QMainWindow {
   void onTimeChanged(double t, std::size_t scan);
   // The robot, beams and beam-view reading of the timeline's current scan.
   void showCurrentScan();
+  // The forward model's predicted range of the beam dock's reading under the map shown
+  // (BeamDock::showForward); nothing for an inverse model's map.
+  void showForwardPrediction();
   bool reportError(const QString& title, const QString& message, bool quiet);
   // Makes `dataset` the document's log: timeline, views, re-map (or a pending project's state).
   void adoptLog(const QString& path, std::shared_ptr<const sg::ScanSource> source,

@@ -11,6 +11,8 @@
 #include "main_window.h"
 #include "map_dock.h"
 #include "parameter_panel.h"
+#include "sonargrid/data/scan_poses.h"
+#include "sonargrid/forward/forward_em.h"
 #include "timeline.h"
 
 namespace sg::app {
@@ -89,8 +91,35 @@ void MainWindow::showCurrentScan() {
   const std::size_t scan = timeline_->currentScan();
   view_->setFollowRobot(false);  // a loaded log's robot is where the timeline puts it
   view_->setRobotAt(run, pose, scan);
-  view_->setHighlightedSonar(
-      beamDock_->showReadings(run->scans[scan].readings, run->ring.maxRange));
+  const std::optional<std::size_t> sonar =
+      beamDock_->showReadings(run->scans[scan].readings, run->ring.maxRange);
+  view_->setHighlightedSonar(sonar);
+  showForwardPrediction();
+}
+
+void MainWindow::showForwardPrediction() {
+  const Dataset* run = document_->dataset().get();
+  const auto map = view_->map();
+  const std::optional<std::size_t> sonar = beamDock_->sonar();
+  if (!run || !map || !sonar || !forward::isForwardModelMap(*map)) {
+    beamDock_->showForward({}, nullptr);
+    return;
+  }
+  const Scan& scan = run->scans[timeline_->currentScan()];
+  const PoseSource pose = document_->mapperSettings().pose;
+  if (!hasPose(scan, pose)) {
+    beamDock_->showForward({}, nullptr);
+    return;
+  }
+  for (const Reading& r : scan.readings) {
+    if (r.sonar != *sonar || r.sonar >= run->ring.size()) continue;
+    forward::ForwardBeam beam;
+    beam.sensor = run->pose(scan, pose).compose(run->ring.sonars[r.sonar].pose);
+    beam.maxRange = run->ring.maxRange;
+    beam.range = r.range < run->ring.maxRange ? r.range : Reading::kNoEcho;
+    beamDock_->showForward(beam, map);
+    return;
+  }
 }
 
 bool MainWindow::chooseBeamSonar(std::size_t sonar) {

@@ -14,6 +14,7 @@
 #include "grid_view.h"
 #include "main_window.h"
 #include "remap_controller.h"
+#include "sonargrid/forward/catalog.h"
 #include "timeline.h"
 
 namespace sg::app {
@@ -71,6 +72,13 @@ void MainWindow::createInspector() {
             if (!remap_->dataset()) {
               inspector_->clearContext(
                   tr("The inspector replays a loaded log; a live robot's map cannot be traced."));
+              return;
+            }
+            if (forward::isForwardModel(remap_->settings().model)) {
+              inspector_->clearContext(
+                  tr("The forward model learns every cell from all readings at once by EM: no "
+                     "reading updates a cell on its own, so there is no trace to replay. The "
+                     "beam view shows a reading's predicted range under the map."));
               return;
             }
             inspector_->setContext(remap_->dataset(), map->spec, remap_->settings());

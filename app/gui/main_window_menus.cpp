@@ -28,6 +28,7 @@
 #include "remap_controller.h"
 #include "sonargrid/engine/sensor_model.h"
 #include "sonargrid/engine/update_rule.h"
+#include "sonargrid/forward/catalog.h"
 #include "start_pose_picker.h"
 #include "tour_dialog.h"
 
@@ -50,7 +51,7 @@ bool isReferenceFile(const QString& path) {
 // still declares: switching the rule keeps the model's tuning.
 ParameterSet carryParameters(const std::string& model, const std::string& rule,
                              const ParameterSet& previous) {
-  ParameterSet out = defaultParameters(model, rule);
+  ParameterSet out = forward::mapDefaultParameters(model, rule);
   for (const auto& [name, value] : previous.values())
     if (out.has(name)) out.set(name, value);
   return out;
@@ -249,8 +250,9 @@ void MainWindow::rebuildMappingMenu() {
   qDeleteAll(actions_.modelMenu->findChildren<QActionGroup*>(Qt::FindDirectChildrenOnly));
   qDeleteAll(actions_.ruleMenu->findChildren<QActionGroup*>(Qt::FindDirectChildrenOnly));
   auto* models = new QActionGroup(actions_.modelMenu);
-  for (const std::string& name : sensorModelNames()) {
-    QAction* a = actions_.modelMenu->addAction(QString::fromStdString(sensorModelInfo(name).title));
+  for (const std::string& name : forward::mapModelNames()) {
+    QAction* a =
+        actions_.modelMenu->addAction(QString::fromStdString(forward::mapModelTitle(name)));
     a->setCheckable(true);
     a->setChecked(name == settings.model);
     models->addAction(a);
@@ -258,11 +260,11 @@ void MainWindow::rebuildMappingMenu() {
             [this, n = QString::fromStdString(name)] { chooseModel(n); });
   }
   auto* rules = new QActionGroup(actions_.ruleMenu);
-  for (const std::string& name : updateRuleNames()) {
-    QAction* a = actions_.ruleMenu->addAction(QString::fromStdString(updateRuleInfo(name).title));
+  for (const std::string& name : forward::mapRuleNames()) {
+    QAction* a = actions_.ruleMenu->addAction(QString::fromStdString(forward::mapRuleTitle(name)));
     a->setCheckable(true);
     a->setChecked(name == settings.rule);
-    const Compatibility c = compatibility(settings.model, name);
+    const Compatibility c = forward::mapCompatibility(settings.model, name);
     a->setEnabled(c.allowed);
     if (!c.allowed) a->setToolTip(QString::fromStdString(c.reason));
     rules->addAction(a);

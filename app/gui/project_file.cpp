@@ -11,6 +11,7 @@
 
 #include "sonargrid/base/atomic_file.h"
 #include "sonargrid/engine/update_rule.h"
+#include "sonargrid/forward/catalog.h"
 #include "sonargrid/io/csv_layout.h"
 #include "sonargrid/reference/read_reference.h"
 #include "sonargrid/reference/reference_json.h"
@@ -236,12 +237,14 @@ class Reader {
     MapperSettings s;
     s.model = string(o, field, QStringLiteral("model"), true).toStdString();
     s.rule = string(o, field, QStringLiteral("rule"), true).toStdString();
-    try {
-      s.parameters = defaultParameters(s.model, s.rule);
-    } catch (const std::exception& e) {
-      fail(field, QString::fromUtf8(e.what()));
+    const Compatibility c = forward::mapCompatibility(s.model, s.rule);
+    if (c.allowed) {
+      try {
+        s.parameters = forward::mapDefaultParameters(s.model, s.rule);
+      } catch (const std::exception& e) {
+        fail(field, QString::fromUtf8(e.what()));
+      }
     }
-    const Compatibility c = compatibility(s.model, s.rule);
     if (!c.allowed) fail(join(field, QStringLiteral("rule")), QString::fromStdString(c.reason));
     s.pose = pose(o, field);
     const QString pfield = join(field, QStringLiteral("parameters"));

@@ -6,6 +6,7 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QStatusBar>
+#include <algorithm>
 
 namespace sg::app {
 
@@ -14,7 +15,9 @@ StatusReport::StatusReport(QStatusBar* bar)
       hint_(new QLabel(bar)),
       remap_(new QLabel(bar)),
       loadBar_(new QProgressBar(bar)),
-      cancel_(new QPushButton(tr("Cancel"), bar)) {
+      cancel_(new QPushButton(tr("Cancel"), bar)),
+      emBar_(new QProgressBar(bar)),
+      stopEm_(new QPushButton(tr("Stop EM"), bar)) {
   remap_->setObjectName(QStringLiteral("remapStatus"));
   // Wide enough for its longest text, so a new time does not lay the status bar out again.
   remap_->setMinimumWidth(
@@ -30,6 +33,36 @@ StatusReport::StatusReport(QStatusBar* bar)
   connect(cancel_, &QPushButton::clicked, this, &StatusReport::cancelLoadClicked);
   bar->addPermanentWidget(loadBar_);
   bar->addPermanentWidget(cancel_);
+  emBar_->setObjectName(QStringLiteral("emProgress"));
+  emBar_->setFixedWidth(emBar_->fontMetrics().horizontalAdvance(QLatin1Char('x')) * 32);
+  emBar_->setVisible(false);
+  stopEm_->setObjectName(QStringLiteral("stopEm"));
+  stopEm_->setToolTip(tr("Stop the forward model's EM; the map shown stays"));
+  stopEm_->setVisible(false);
+  connect(stopEm_, &QPushButton::clicked, this, &StatusReport::stopEmClicked);
+  bar->addPermanentWidget(emBar_);
+  bar->addPermanentWidget(stopEm_);
+}
+
+void StatusReport::emProgress(int iteration, int cap, double logLikelihood) {
+  emBar_->setRange(0, std::max(1, cap));
+  emBar_->setValue(std::min(iteration, cap));
+  emBar_->setFormat(tr("EM %v of at most %m"));
+  emBar_->setToolTip(
+      tr("Log-likelihood of the readings under the map so far: %1").arg(logLikelihood, 0, 'f', 1));
+  emBar_->setVisible(true);
+  stopEm_->setVisible(true);
+  remap_->setText(tr("EM: log-likelihood %1").arg(logLikelihood, 0, 'g', 8));
+}
+
+void StatusReport::emStopped() {
+  emEnded();
+  remap_->setText(tr("EM stopped; the map shown stays"));
+}
+
+void StatusReport::emEnded() {
+  emBar_->setVisible(false);
+  stopEm_->setVisible(false);
 }
 
 void StatusReport::setHint(const QString& text) {

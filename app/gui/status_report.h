@@ -24,6 +24,12 @@ class StatusReport : public QObject {
   void mapped(double ms);
   void previewed(double cellCm, double ms);
   void mappingFailed();
+  // The forward model's EM (docs/forward-model.md): iteration `iteration` of at most `cap` done,
+  // shown as a bar with a Stop EM button until emEnded().
+  void emProgress(int iteration, int cap, double logLikelihood);
+  void emEnded();
+  // Stop EM ended a run: the map shown is the last one made.
+  void emStopped();
   // The time of the last mapped(), in ms.
   double lastMapMs() const { return lastMapMs_; }
 
@@ -33,12 +39,15 @@ class StatusReport : public QObject {
 
  signals:
   void cancelLoadClicked();
+  void stopEmClicked();
 
  private:
   QLabel* hint_;
   QLabel* remap_;
   QProgressBar* loadBar_;
   QPushButton* cancel_;
+  QProgressBar* emBar_;
+  QPushButton* stopEm_;
   double lastMapMs_ = 0.0;
 };
 

@@ -17,11 +17,13 @@
 
 #include "beam_model_view.h"
 #include "document.h"
+#include "forward_range_view.h"
 #include "grid_view.h"
 #include "main_window.h"
 #include "parameter_panel.h"
 #include "remap_controller.h"
 #include "sonargrid/export/map_export.h"
+#include "sonargrid/forward/forward_em.h"
 #include "sonargrid/io/sglog.h"
 #include "timeline.h"
 
@@ -278,6 +280,43 @@ class TestMainWindowPanel : public QObject {
     // Without an echo the view draws a reading at the maximum range.
     QCOMPARE(window.beamModelView()->range(), want->echo() ? want->range : data_.ring.maxRange);
     QVERIFY(window.waitForMap(60000));
+  }
+
+  // docs/forward-model.md: with the forward model the beam dock shows, for the current reading,
+  // the range distribution the EM map predicts, with the measured range on it; the distribution
+  // is one (its density over [0, z_max] and P(no echo) add up to 1, up to the 400-sample sum and
+  // the Gaussians of cells within 4σ of 0 or z_max that reach past them).
+  void theForwardModelShowsItsPrediction() {
+    app::MainWindow window;
+    QVERIFY(openRoom(window));
+    QVERIFY(!window.forwardRangeView()->isVisibleTo(&window));
+    MapperSettings em;
+    em.model = forward::kModelName;
+    em.rule = forward::kRuleName;
+    em.pose = PoseSource::Truth;
+    em.parameters = forward::defaultForwardParameters();
+    em.parameters.set("iterations", 5);
+    window.setMapperSettings(em);
+    QVERIFY(window.waitForMap(60000));
+    QCOMPARE(window.gridView()->map()->model, std::string("forward-em"));
+    QVERIFY(window.forwardRangeView()->isVisibleTo(&window));
+    QVERIFY(!window.beamModelView()->isVisibleTo(&window));
+    const ui::ForwardRangeView* view = window.forwardRangeView();
+    QTRY_VERIFY(!view->ranges().empty());
+    const auto sonar = window.beamSonar();
+    QVERIFY(sonar);
+    const Scan& scan = data_.scans[window.timeline()->currentScan()];
+    for (const Reading& r : scan.readings) {
+      if (r.sonar != *sonar) continue;
+      if (r.echo() && r.range < data_.ring.maxRange)
+        QCOMPARE(view->measured(), std::optional<double>(r.range));
+      else
+        QVERIFY(!view->measured());
+    }
+    double total = view->prediction().noEcho;
+    const double dz = view->ranges()[1] - view->ranges()[0];
+    for (const double d : view->prediction().density) total += d * dz;
+    QVERIFY2(std::abs(total - 1.0) < 0.02, qPrintable(QString::number(total)));
   }
 
  private:

@@ -14,6 +14,7 @@
 #include <QStandardItemModel>
 
 #include "parameter_panel.h"
+#include "sonargrid/forward/forward_em.h"
 #include "sonargrid/params/presets.h"
 
 using namespace sg;
@@ -78,6 +79,7 @@ class TstParameterPanel : public QObject {
   void noteKeepsItsRoomWhileSlidersMove();
   void modelsThatLookPoorSaySo();
   void modelChangeMovesAnIncompatibleRule();
+  void theForwardModelTakesEmAlone();
   void modelChangePrefersThePapersRule_data();
   void modelChangePrefersThePapersRule();
   void ruleNoteOnlyForARuleThatCameWithTheModel_data();
@@ -265,6 +267,31 @@ void TstParameterPanel::modelChangeMovesAnIncompatibleRule() {
   QVERIFY(panel.findChild<QLabel*>("status")->text().contains("addition"));
   QCOMPARE(sliderNames(panel),
            (QStringList{"cv_max", "decrement", "increment", "no_echo", "p_hit", "p_miss"}));
+}
+
+// The forward model learned by EM (docs/forward-model.md) beside the inverse models: its rule is
+// EM alone (every update rule disabled for it, EM disabled for the others), its rows are its own
+// declarations, and the panel says it is a batch method.
+void TstParameterPanel::theForwardModelTakesEmAlone() {
+  ParameterPanel panel;  // hpf + addition
+  auto* rules = panel.findChild<QComboBox*>("ruleChooser");
+  auto* items = qobject_cast<QStandardItemModel*>(rules->model());
+  QVERIFY(!items->item(rules->findData("em"))->isEnabled());
+  QSignalSpy spy(&panel, &ParameterPanel::settingsChanged);
+  choose(panel.findChild<QComboBox*>("modelChooser"), "forward-em");
+  QCOMPARE(spy.count(), 1);
+  QCOMPARE(lastEmitted(spy).model, std::string("forward-em"));
+  QCOMPARE(lastEmitted(spy).rule, std::string("em"));
+  QCOMPARE(lastEmitted(spy).parameters, sg::forward::defaultForwardParameters());
+  QVERIFY(items->item(rules->findData("em"))->isEnabled());
+  for (const char* rule : {"addition", "bayes", "logodds", "himm", "dempster-shafer"})
+    QVERIFY2(!items->item(rules->findData(rule))->isEnabled(), rule);
+  QCOMPARE(sliderNames(panel),
+           (QStringList{"iterations", "omega", "p_init", "p_max", "p_rand", "sigma"}));
+  QVERIFY(panel.findChild<QLabel*>("modelCaveat")->text().contains("EM"));
+  // Back to an inverse model: its paper's rule again.
+  choose(panel.findChild<QComboBox*>("modelChooser"), "konolige");
+  QCOMPARE(panel.settings().rule, std::string("log"));
 }
 
 void TstParameterPanel::modelChangePrefersThePapersRule_data() {

@@ -8,6 +8,7 @@
 
 #include "remap_controller.h"
 #include "sonargrid/engine/scan_source.h"
+#include "sonargrid/forward/forward_em.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/io/sglog.h"
 
@@ -385,6 +386,69 @@ class TestRemapController : public QObject {
       }
     QVERIFY(common > 1000);
     QCOMPARE(common, observedCount(*fromLog));  // none of the log's observed cells is left out
+  }
+
+  void theForwardModelRunsEmWithProgress() {
+    // docs/forward-model.md: a forward-model run is EM over the whole log with emProgress() after
+    // each iteration (the start, then one per iteration), no preview even with previews on, and
+    // the map EM gives in the core (forward_em.h) to the last bit.
+    const auto data = roomLog();
+    RemapController remap;
+    remap.setPreview(2, 0.0);
+    QSignalSpy progress(&remap, &RemapController::emProgress);
+    QSignalSpy previewed(&remap, &RemapController::previewed);
+    QSignalSpy mapped(&remap, &RemapController::mapped);
+    remap.start(data, 0.05, settingsFor("hpf", "bayes"), std::numeric_limits<double>::infinity());
+    QVERIFY(mapped.wait(60000));
+    MapperSettings em;
+    em.model = forward::kModelName;
+    em.rule = forward::kRuleName;
+    em.parameters = forward::defaultForwardParameters();
+    em.parameters.set("iterations", 4);
+    remap.setSettings(em);
+    QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), 2, 60000);
+    QCOMPARE(previewed.count(), 0);
+    QTRY_COMPARE(progress.count(), 5);  // the starting map and 4 iterations
+    for (int i = 0; i < 5; ++i) {
+      QCOMPARE(progress.at(i).at(0).toInt(), i);
+      QCOMPARE(progress.at(i).at(1).toInt(), 4);
+      if (i > 0) QVERIFY(progress.at(i).at(2).toDouble() >= progress.at(i - 1).at(2).toDouble());
+    }
+    const auto map = mapped.at(1).at(0).value<std::shared_ptr<const OccupancyMap>>();
+    QCOMPARE(map->model, std::string(forward::kModelName));
+    const forward::EmResult expected = forward::runEm(forward::beamsOf(*data, PoseSource::Odometry),
+                                                      data->fittingGrid(PoseSource::Odometry, 0.05),
+                                                      forward::settingsOf(em.parameters));
+    QVERIFY(map->probability.identical(expected.map.probability));
+    QCOMPARE(map->level, expected.map.level);
+
+    // Stop ends a run: cancelled, no map; the last map stays the controller's.
+    em.parameters.set("iterations", 500);
+    em.parameters.set("p_rand", 0.02);
+    QSignalSpy cancelled(&remap, &RemapController::cancelled);
+    const qsizetype before = progress.count();
+    remap.setSettings(em);
+    QTRY_VERIFY_WITH_TIMEOUT(progress.count() > before, 60000);  // EM is under way
+    remap.stop();
+    QVERIFY(cancelled.wait(60000));
+    QVERIFY(cancelled.at(0).at(1).toBool());  // stopped part-way
+    QTest::qWait(50);
+    QCOMPARE(mapped.count(), 2);
+    QCOMPARE(remap.lastMap(), map);
+  }
+
+  void theForwardModelRefusesALiveLink() {
+    auto source = std::make_shared<ScanSource>("live", SonarRing::pioneer3dx());
+    MapperSettings em;
+    em.model = forward::kModelName;
+    em.rule = forward::kRuleName;
+    em.parameters = forward::defaultForwardParameters();
+    RemapController remap;
+    QSignalSpy failed(&remap, &RemapController::failed);
+    remap.startLive(source, 0.05, em);
+    QVERIFY(failed.wait(10000));
+    QVERIFY2(failed.at(0).at(0).toString().contains("whole log"),
+             qPrintable(failed.at(0).at(0).toString()));
   }
 
   void failureIsReported() {

@@ -492,7 +492,7 @@ EmResult runEm(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
   map.spec = grid;
   map.model = kModelName;
   map.rule = kRuleName;
-  std::vector<double> probability(cells, 0.5), native(cells, 0.0), evidence(cells, 0.0);
+  std::vector<double> probability(cells, 0.5), evidence(cells, 0.0);
   std::vector<std::uint8_t> filled(cells, 0);
   map.level.assign(cells, levelOfProbability(0.5));
   for (std::size_t c = 0; c < cells; ++c) {
@@ -500,18 +500,21 @@ EmResult runEm(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
     const double l = logOdds[c];
     const double p = 1.0 / (1.0 + std::exp(-l));
     probability[c] = p;
-    native[c] = l;
     evidence[c] = std::max(0.0, 2.0 * p - 1.0);
     filled[c] = p > 0.5 ? 1 : 0;
     map.level[c] = levelOfProbability(p);
   }
   map.probability = std::move(probability);
-  map.native = std::move(native);
+  map.native = m;  // EM's occupancy, every cell (p_init where no reading met it)
   map.evidence = std::move(evidence);
   map.filled = std::move(filled);
   map.observed = std::move(observed);
   result.occupancy = std::move(m);
   return result;
+}
+
+bool isForwardModelMap(const OccupancyMap& map) {
+  return map.model == kModelName && map.rule == kRuleName;
 }
 
 RangePrediction predictRange(const ForwardBeam& beam, const GridSpec& grid,

@@ -46,8 +46,8 @@
 // every other cell held at its EM value m*,
 //   log-odds_j = Σ_{readings meeting j} [log p(z | m*, m_j = 1) − log p(z | m*, m_j = 0)],
 // which the map's layers report: p(occ) = σ(log-odds) (unobserved cells 0.5), the 16 levels of it,
-// "filled" where p > 0.5, the log-odds as its native value and max(0, 2p − 1) as its evidence; so
-// views, exports and metrics read it unchanged.
+// "filled" where p > 0.5, EM's occupancy m* as its native value (what predictRange() reads) and
+// max(0, 2p − 1) as its evidence; so views, exports and metrics read it unchanged.
 //
 // Deterministic and threaded by the thread policy (base/concurrency.h): the readings are cut into
 // chunks of a fixed size whatever the thread count; each chunk's E-step sums into arrays of its
@@ -152,6 +152,9 @@ struct EmResult {
 EmResult runEm(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
                const ForwardSettings& settings, const std::atomic<bool>* cancel = nullptr,
                const std::function<void(const EmProgress&)>& progress = {});
+
+// Whether `map` was learned by EM (its model and rule names): its native layer is then m*.
+bool isForwardModelMap(const OccupancyMap& map);
 
 // For the beam view: one reading's predicted range distribution under the map `occupancy` (per
 // cell of `grid`): the density of z at each of `ranges` (per metre), and the probability of no
