@@ -758,7 +758,27 @@ void TstCli::mapForwardModel() {
                              "--model", "forward-em",  "--iterations", "2",     "--json"};
   const Run s = runCli(score, tmp_.path());
   QVERIFY2(s.finished && s.status == QProcess::NormalExit && s.code == 0, describe(score, s));
-  QVERIFY(QJsonDocument::fromJson(s.out).object().contains("iop_mm"));
+  const double iop = QJsonDocument::fromJson(s.out).object().value("iop_mm").toDouble();
+  QVERIFY(iop > 0.0);
+
+  // `sweep` maps each set by EM: the set at the defaults scores as `score` scored it above.
+  const QString csv = tmp_.filePath("forward-sweep.csv");
+  const QStringList sweep = {
+      "sweep",           "--log",      kRoomLog,       "--reference", reference,
+      "--model",         "forward-em", "--iterations", "2",           "--grid",
+      "sigma=0.03,0.05", "--metric",   "iop",          "--csv",       csv};
+  const Run w = runCli(sweep, tmp_.path());
+  QVERIFY2(w.finished && w.status == QProcess::NormalExit && w.code == 0, describe(sweep, w));
+  QFile file(csv);
+  QVERIFY(file.open(QIODevice::ReadOnly));
+  QStringList rows;
+  for (const QByteArray& line : file.readAll().split('\n'))
+    if (!line.isEmpty() && !line.startsWith('#')) rows << QString::fromUtf8(line);
+  QCOMPARE(rows.size(), 3);  // the header and two sets
+  const QStringList header = rows[0].split(',');
+  const QStringList second = rows[2].split(',');
+  QCOMPARE(second[header.indexOf("sigma")].toDouble(), 0.05);
+  QCOMPARE(second[header.indexOf("iop_mm")].toDouble(), iop);
 }
 
 // ---- errors -------------------------------------------------------------------------------------

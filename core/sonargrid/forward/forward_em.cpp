@@ -20,7 +20,12 @@ constexpr std::size_t kChunk = 4096;
 // Runs work(chunk) for every chunk of [0, chunks) on the thread policy's threads, each chunk once.
 // Stops handing out chunks when `cancel` turns true. Returns false if it did.
 bool forEachChunk(std::size_t chunks, const std::atomic<bool>* cancel,
-                  const std::function<void(std::size_t)>& work) {
+                  const std::function<void(std::size_t)>& work,
+                  const std::atomic<bool>* stop2 = nullptr) {
+  const auto stopped = [&] {
+    return (cancel && cancel->load(std::memory_order_relaxed)) ||
+           (stop2 && stop2->load(std::memory_order_relaxed));
+  };
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
   const unsigned threads = static_cast<unsigned>(
@@ -30,7 +35,7 @@ bool forEachChunk(std::size_t chunks, const std::atomic<bool>* cancel,
       [&](unsigned) {
         for (;;) {
           if (stop.load(std::memory_order_relaxed)) return;
-          if (cancel && cancel->load(std::memory_order_relaxed)) {
+          if (stopped()) {
             stop = true;
             return;
           }
@@ -40,7 +45,7 @@ bool forEachChunk(std::size_t chunks, const std::atomic<bool>* cancel,
         }
       },
       [&] { stop = true; });
-  return !(cancel && cancel->load());
+  return !stopped();
 }
 
 // A chunk's box of cells (inclusive), where its sums go.
@@ -365,7 +370,8 @@ Cones conesOf(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
 
 EmResult runEm(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
                const ForwardSettings& s, const std::atomic<bool>* cancel,
-               const std::function<void(const EmProgress&)>& progress) {
+               const std::function<void(const EmProgress&)>& progress,
+               const std::atomic<bool>* stop) {
   checkSettings(s);
   if (grid.cellCount() == 0) throw ForwardError("forward model: the grid has no cells");
   std::vector<Chunk> chunks = chunksOf(beams, grid, s);
@@ -398,29 +404,32 @@ EmResult runEm(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
   };
 
   const auto eStep = [&]() -> bool {
-    return forEachChunk(chunks.size(), cancel, [&](std::size_t ch) {
-      Chunk& c = chunks[ch];
-      gather(c);
-      c.a.assign(c.box.area(), 0.0);
-      c.b.assign(c.box.area(), 0.0);
-      ReadingTerms t;
-      double logL = 0.0;
-      for (std::size_t i = 0; i + 1 < c.first.size(); ++i) {
-        termsOf(c, i, beams[c.begin + i], s, cellSize, t);
-        logL += std::log(t.p);
-        const double f = t.weight * t.scale / t.p;
-        double reached = 1.0;  // Π_{k'<k} (1 − m_k')
-        const std::uint64_t b = c.first[i];
-        for (std::size_t j = 0; j < t.n.size(); ++j) {
-          const std::uint32_t at = c.slot[b + j];
-          const double mj = c.m[at];
-          c.a[at] += f * mj * reached * t.n[j];
-          c.b[at] += f * reached * (1.0 - mj) * t.t[j];
-          reached *= 1.0 - mj;
-        }
-      }
-      c.logL = logL;
-    });
+    return forEachChunk(
+        chunks.size(), cancel,
+        [&](std::size_t ch) {
+          Chunk& c = chunks[ch];
+          gather(c);
+          c.a.assign(c.box.area(), 0.0);
+          c.b.assign(c.box.area(), 0.0);
+          ReadingTerms t;
+          double logL = 0.0;
+          for (std::size_t i = 0; i + 1 < c.first.size(); ++i) {
+            termsOf(c, i, beams[c.begin + i], s, cellSize, t);
+            logL += std::log(t.p);
+            const double f = t.weight * t.scale / t.p;
+            double reached = 1.0;  // Π_{k'<k} (1 − m_k')
+            const std::uint64_t b = c.first[i];
+            for (std::size_t j = 0; j < t.n.size(); ++j) {
+              const std::uint32_t at = c.slot[b + j];
+              const double mj = c.m[at];
+              c.a[at] += f * mj * reached * t.n[j];
+              c.b[at] += f * reached * (1.0 - mj) * t.t[j];
+              reached *= 1.0 - mj;
+            }
+          }
+          c.logL = logL;
+        },
+        stop);
   };
 
   std::vector<double> hits(cells), passes(cells);
@@ -441,7 +450,7 @@ EmResult runEm(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
       }
     }
     if (it >= s.iterations) break;
-    if (cancel && cancel->load()) {
+    if ((cancel && cancel->load()) || (stop && stop->load())) {
       result.cancelled = true;
       return result;
     }
@@ -456,30 +465,33 @@ EmResult runEm(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
   }
 
   // The posterior: each cell's log-odds with the others held at m* (forward_em.h).
-  const bool done = forEachChunk(chunks.size(), cancel, [&](std::size_t ch) {
-    Chunk& c = chunks[ch];
-    gather(c);
-    c.a.assign(c.box.area(), 0.0);
-    c.b.clear();
-    c.b.shrink_to_fit();
-    ReadingTerms t;
-    for (std::size_t i = 0; i + 1 < c.first.size(); ++i) {
-      termsOf(c, i, beams[c.begin + i], s, cellSize, t);
-      const double g = t.weight * t.scale;
-      double before = 0.0;   // Σ_{k'<k} m_k' Π_{k''<k'} (1 − m_k'') N_k'
-      double reached = 1.0;  // Π_{k'<k} (1 − m_k')
-      const std::uint64_t b = c.first[i];
-      for (std::size_t j = 0; j < t.n.size(); ++j) {
-        const std::uint32_t at = c.slot[b + j];
-        const double mj = c.m[at];
-        const double p1 = t.randomTerm + g * (before + reached * t.n[j]);
-        const double p0 = t.randomTerm + g * (before + reached * t.t[j]);
-        c.a[at] += std::log(p1 / p0);
-        before += mj * reached * t.n[j];
-        reached *= 1.0 - mj;
-      }
-    }
-  });
+  const bool done = forEachChunk(
+      chunks.size(), cancel,
+      [&](std::size_t ch) {
+        Chunk& c = chunks[ch];
+        gather(c);
+        c.a.assign(c.box.area(), 0.0);
+        c.b.clear();
+        c.b.shrink_to_fit();
+        ReadingTerms t;
+        for (std::size_t i = 0; i + 1 < c.first.size(); ++i) {
+          termsOf(c, i, beams[c.begin + i], s, cellSize, t);
+          const double g = t.weight * t.scale;
+          double before = 0.0;   // Σ_{k'<k} m_k' Π_{k''<k'} (1 − m_k'') N_k'
+          double reached = 1.0;  // Π_{k'<k} (1 − m_k')
+          const std::uint64_t b = c.first[i];
+          for (std::size_t j = 0; j < t.n.size(); ++j) {
+            const std::uint32_t at = c.slot[b + j];
+            const double mj = c.m[at];
+            const double p1 = t.randomTerm + g * (before + reached * t.n[j]);
+            const double p0 = t.randomTerm + g * (before + reached * t.t[j]);
+            c.a[at] += std::log(p1 / p0);
+            before += mj * reached * t.n[j];
+            reached *= 1.0 - mj;
+          }
+        }
+      },
+      stop);
   if (!done) {
     result.cancelled = true;
     return result;

@@ -147,11 +147,12 @@ struct EmResult {
 };
 
 // EM over `beams` on `grid`. `progress` (if any) is called after every iteration on the calling
-// thread; `cancel` is read between iterations and between chunks. Throws ForwardError for settings
-// out of range or a grid without cells.
+// thread; `cancel` and `stop` (a sweep's own stop; either may be null) are read between iterations
+// and between chunks. Throws ForwardError for settings out of range or a grid without cells.
 EmResult runEm(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
                const ForwardSettings& settings, const std::atomic<bool>* cancel = nullptr,
-               const std::function<void(const EmProgress&)>& progress = {});
+               const std::function<void(const EmProgress&)>& progress = {},
+               const std::atomic<bool>* stop = nullptr);
 
 // Whether `map` was learned by EM (its model and rule names): its native layer is then m*.
 bool isForwardModelMap(const OccupancyMap& map);

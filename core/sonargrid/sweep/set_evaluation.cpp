@@ -9,6 +9,8 @@
 #include "sonargrid/base/concurrency.h"
 #include "sonargrid/data/scan_poses.h"
 #include "sonargrid/engine/mapper.h"
+#include "sonargrid/forward/catalog.h"
+#include "sonargrid/forward/forward_em.h"
 #include "sonargrid/sweep/batch_evaluation.h"
 
 namespace sg {
@@ -30,10 +32,41 @@ bool mapRun(Mapper& mapper, const Dataset& data, const std::atomic<bool>* cancel
   return true;
 }
 
+// The forward model's maps of the set: EM over each run (docs/forward-model.md). Inside a sweep
+// (with `stop`) EM runs on this thread alone, as parallelThreads() grants there.
+std::optional<SetEvaluation> evaluateForward(const SetEvaluationInput& in, const ParameterSet& set,
+                                             const std::atomic<bool>* cancel,
+                                             const std::atomic<bool>* stop) {
+  if (in.measures.vsdns) {
+    throw MapperError(
+        "VSDNS replays an inverse model's evidence reading by reading; the forward model learns "
+        "its map by EM and has none: sweep it by the reference metrics, derivative noise, entropy "
+        "or two runs");
+  }
+  const forward::ForwardSettings settings = forward::settingsOf(set);
+  const auto mapOf = [&](const Dataset& run) -> std::optional<OccupancyMap> {
+    try {
+      forward::EmResult em = forward::runEm(forward::beamsOf(run, in.settings.pose),
+                                            in.settings.grid, settings, cancel, {}, stop);
+      if (em.cancelled) return std::nullopt;
+      return std::move(em.map);
+    } catch (const forward::ForwardError& e) {
+      throw MapperError(e.what());
+    }
+  };
+  const std::optional<OccupancyMap> first = mapOf(*in.run);
+  if (!first) return std::nullopt;
+  if (!in.measures.twoRun) return measureSet(in, std::nullopt, &*first, nullptr);
+  const std::optional<OccupancyMap> second = mapOf(*in.secondRun);
+  if (!second) return std::nullopt;
+  return measureSet(in, std::nullopt, &*first, &*second);
+}
+
 std::optional<SetEvaluation> evaluate(const SetEvaluationInput& in, const ParameterSet& set,
                                       const std::atomic<bool>* cancel,
                                       const std::atomic<bool>* stop) {
   checkSetEvaluationInput(in);
+  if (forward::isForwardModel(in.settings.model)) return evaluateForward(in, set, cancel, stop);
   MapperSettings ms;
   ms.model = in.settings.model;
   ms.rule = in.settings.rule;
