@@ -97,6 +97,33 @@ OccupancyMap mapLog(const Dataset& data, const fs::path& path, const GridSpec& g
   }
 }
 
+CommonScores scoreOnCommonCells(
+    std::size_t configs, const GridSpec& grid,
+    const std::function<OccupancyMap(std::size_t c, const GridSpec& on)>& mapConfig,
+    const ReferenceMap& reference, const ScoreOptions& options, const fs::path& referencePath) {
+  CommonScores out;
+  out.maps.resize(configs);
+  for (std::size_t c = 0; c < configs; ++c) out.maps[c] = mapConfig(c, grid);
+  if (std::any_of(out.maps.begin(), out.maps.end(),
+                  [&](const OccupancyMap& m) { return !(m.spec == out.maps.front().spec); })) {
+    const GridSpec all = unionOf(out.maps);
+    for (std::size_t c = 0; c < configs; ++c)
+      if (!(out.maps[c].spec == all)) out.maps[c] = mapConfig(c, all);
+  }
+  ScoreOptions common = options;
+  std::vector<const OccupancyMap*> observed;
+  for (const OccupancyMap& m : out.maps) observed.push_back(&m);
+  common.cellMask = commonObservedCells(observed);
+  for (const OccupancyMap& m : out.maps) {
+    try {
+      out.scores.push_back(scoreAgainstReference(m, reference, common));
+    } catch (const MetricsError& e) {
+      throw InputError(referencePath.string() + ": " + e.what());
+    }
+  }
+  return out;
+}
+
 void writeMapWithReference(const OccupancyMap& map, const ReferenceMap& reference,
                            const fs::path& path, const std::vector<Position>& markers) {
   PngOptions options;

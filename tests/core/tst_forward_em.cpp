@@ -175,9 +175,11 @@ class TstForwardEm : public QObject {
 
   void thePosteriorKeepsTheFrameAndTheWall() {
     // The posterior with the other cells at m*: cell 2 explains two readings and blocks one, so
-    // its log-odds are log((r + wN)/r)·2 − log((r + wN/3)/r)·1 > 0 with r = p_rand/z_max and N the
-    // Gaussian's peak; cell 1 is passed by all three readings (log-odds < 0); cell 3 explains the
-    // one reading it meets. Cell 0 holds the transducer and is met by no cone: unobserved.
+    // its likelihood ratio is log((r + wN)/r)·2 − log((r + wN/3)/r)·1 > 0 with r = p_rand/z_max
+    // and N the Gaussian's peak, and its prior log((A + 1)/(B + 1)) = log(3/2) > 0 (two expected
+    // hits, one pass); cell 1 is passed by all three readings (ratio < 0, prior log(1/4)); cell 3
+    // explains the one reading it meets. Cell 0 holds the transducer and is met by no cone:
+    // unobserved.
     const EmResult r = runEm(doorReadings(), rowGrid(), handSettings(0.05));
     const OccupancyMap& m = r.map;
     QCOMPARE(m.observed[0], std::uint8_t(0));
@@ -187,6 +189,53 @@ class TstForwardEm : public QObject {
     QCOMPARE(m.filled[3], std::uint8_t(1));
     QCOMPARE(m.level[1], std::uint8_t(0));
     QCOMPARE(m.model, std::string(kModelName));
+  }
+
+  void aDoorSeenThroughStaysOpen() {
+    // A corridor wall with a door (docs/forward-model.md, the doorway that inverse models close):
+    // 10 cm cells, the wall on row 10 (y 1.0–1.1 m) but for the door at columns 12–17 (x 1.2–1.8
+    // m), a far wall on row 19. Sonars 0.25 m from the bottom, every 10 cm along x, look up
+    // with the default 25° cone. Each reading is the distance of the first occupied cell its cone
+    // meets (the model's own detection order, exact data): 0.75 m or so under the wall and near
+    // the door frame, 1.65 m or so through the door. EM must keep the door's cells free
+    // and put the wall and the far wall seen through the door on their rows.
+    GridSpec g;
+    g.origin = {0.0, 0.0};
+    g.cellSize = 0.1;
+    g.width = 30;
+    g.height = 20;
+    std::vector<std::uint8_t> truth(g.cellCount(), 0);
+    for (int x = 0; x < g.width; ++x) {
+      if (x < 12 || x > 17) truth[10 * g.width + x] = 1;
+      truth[19 * g.width + x] = 1;
+    }
+    const ForwardSettings s;  // the defaults: 50 iterations
+    std::vector<ForwardBeam> probes;
+    for (int i = 0; i < 28; ++i) {
+      ForwardBeam b;
+      b.sensor = Pose2D(0.15 + 0.1 * i, 0.25, M_PI / 2.0);
+      b.maxRange = 5.0;
+      b.range = Reading::kNoEcho;
+      probes.push_back(b);
+    }
+    const Cones whole = conesOf(probes, g, s);
+    std::vector<ForwardBeam> readings;
+    for (std::size_t r = 0; r < probes.size(); ++r) {
+      ForwardBeam b = probes[r];
+      for (std::uint64_t e = whole.first[r]; e < whole.first[r + 1]; ++e) {
+        if (!truth[whole.cell[e]]) continue;
+        b.range = whole.distance[e];
+        break;
+      }
+      for (int k = 0; k < 3; ++k) readings.push_back(b);  // each reading three times
+    }
+    const EmResult r = runEm(readings, g, s);
+    for (int x = 12; x <= 17; ++x)  // the door: free
+      QVERIFY2(r.map.probability[10 * g.width + x] < 0.5, qPrintable(QString::number(x)));
+    for (const int x : {0, 5, 11, 18, 24, 29})  // the wall either side, the frame: occupied
+      QVERIFY2(r.map.probability[10 * g.width + x] > 0.5, qPrintable(QString::number(x)));
+    for (int x = 12; x <= 17; ++x)  // the far wall, seen only through the door: occupied
+      QVERIFY2(r.map.probability[19 * g.width + x] > 0.5, qPrintable(QString::number(x)));
   }
 
   void theLogLikelihoodNeverDecreases() {

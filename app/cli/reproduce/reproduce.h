@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -71,6 +72,27 @@ MapperSettings settingsFor(const std::string& model, const std::string& rule, co
 // Maps the whole log (InputError naming `path` on a mapper error).
 OccupancyMap mapLog(const Dataset& data, const fs::path& path, const GridSpec& grid,
                     const MapperSettings& settings, FootprintObserver* observer = nullptr);
+
+// One run's maps of several configurations, compared as `sonargrid-cli compare` compares them:
+// each mapped on `grid` by mapConfig(c, grid), again on their union where a mapper grew one
+// (unionOf), and each scored against `reference` on the cells that all of them observed
+// (commonObservedCells, compare's default `--cells common`). InputError naming `referencePath`
+// when the reference has nothing on the grid.
+// A metric a table reports: its key in the JSON and CSV, and its column title.
+struct Benchmark {
+  Metric metric;
+  const char* key;
+  const char* title;
+};
+
+struct CommonScores {
+  std::vector<OccupancyMap> maps;
+  std::vector<ReferenceScore> scores;
+};
+CommonScores scoreOnCommonCells(
+    std::size_t configs, const GridSpec& grid,
+    const std::function<OccupancyMap(std::size_t c, const GridSpec& on)>& mapConfig,
+    const ReferenceMap& reference, const ScoreOptions& options, const fs::path& referencePath);
 
 // The map as a PNG (4 pixels per cell, legend) with the reference's edges drawn over it in black.
 void writeMapWithReference(const OccupancyMap& map, const ReferenceMap& reference,

@@ -38,11 +38,6 @@ constexpr Variant kRules[] = {
     {"log", "Log (log)", "konolige", "log", {63.33, 13.50, 10.48, 42.69}},
 };
 
-struct Benchmark {
-  Metric metric;
-  const char* key;
-  const char* title;
-};
 constexpr Benchmark kBenchmarks[] = {
     {Metric::Correlation, "correlation_pct", "Correlation (%)"},
     {Metric::MapScore, "map_score_pct", "Map Score (%)"},
@@ -86,35 +81,22 @@ Json runOSullivan(const Context& ctx) {
   // Per configuration, per benchmark, the value of each run.
   std::map<std::string, std::vector<std::vector<std::optional<double>>>> values;
   for (std::size_t r = 0; r < logs.size(); ++r) {
-    std::vector<OccupancyMap> maps(configs.size());
-    auto mapConfig = [&](std::size_t c, const GridSpec& on) {
-      std::vector<std::pair<std::string, double>> overrides;
-      // Paper 001 §3.1 combines Occ and Emp as Occ, or 1 − Emp (combine = 1), after normalising
-      // each reading's occupied arc (normalise = 1, the default).
-      if (std::string(configs[c]->rule) == "addition") overrides.push_back({"combine", 1.0});
-      const MapperSettings settings =
-          settingsFor(configs[c]->model, configs[c]->rule, logs[r].ring, overrides);
-      maps[c] = mapLog(logs[r], folder / kRuns[r], on, settings);
-    };
-    for (std::size_t c = 0; c < configs.size(); ++c) mapConfig(c, grid);
-    if (std::any_of(maps.begin(), maps.end(),
-                    [&](const OccupancyMap& m) { return !(m.spec == maps.front().spec); })) {
-      const GridSpec all = unionOf(maps);
-      for (std::size_t c = 0; c < configs.size(); ++c)
-        if (!(maps[c].spec == all)) mapConfig(c, all);
-    }
-    ScoreOptions common = options;
-    std::vector<const OccupancyMap*> pointers;
-    for (const OccupancyMap& m : maps) pointers.push_back(&m);
-    common.cellMask = commonObservedCells(pointers);
+    const CommonScores run = scoreOnCommonCells(
+        configs.size(), grid,
+        [&](std::size_t c, const GridSpec& on) {
+          std::vector<std::pair<std::string, double>> overrides;
+          // Paper 001 §3.1 combines Occ and Emp as Occ, or 1 − Emp (combine = 1), after
+          // normalising each reading's occupied arc (normalise = 1, the default).
+          if (std::string(configs[c]->rule) == "addition") overrides.push_back({"combine", 1.0});
+          const MapperSettings settings =
+              settingsFor(configs[c]->model, configs[c]->rule, logs[r].ring, overrides);
+          return mapLog(logs[r], folder / kRuns[r], on, settings);
+        },
+        reference, options, folder / "world.json");
+    const std::vector<OccupancyMap>& maps = run.maps;
     for (std::size_t c = 0; c < configs.size(); ++c) {
       const Variant& v = *configs[c];
-      ReferenceScore score;
-      try {
-        score = scoreAgainstReference(maps[c], reference, common);
-      } catch (const MetricsError& e) {
-        throw InputError((folder / "world.json").string() + ": " + e.what());
-      }
+      const ReferenceScore& score = run.scores[c];
       auto& perBenchmark = values[idOf(v)];
       perBenchmark.resize(std::size(kBenchmarks));
       std::vector<std::string> row{"", "", v.model, v.rule, std::to_string(r + 1)};

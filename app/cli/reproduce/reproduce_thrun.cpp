@@ -30,11 +30,6 @@ const Source kSources[] = {
     {"raschke-multi", {"in-motion-01.sglog", "in-motion-02.sglog"}},
 };
 
-struct Benchmark {
-  Metric metric;
-  const char* key;
-  const char* title;
-};
 constexpr Benchmark kBenchmarks[] = {
     {Metric::Iop, "iop_mm", "IOP (mm)"},
     {Metric::Correlation, "correlation_pct", "correlation (%)"},
@@ -90,30 +85,17 @@ Json runThrun2003(const Context& ctx) {
       std::map<std::string, std::vector<std::vector<std::optional<double>>>> values;
       for (std::size_t r = 0; r < logs.size(); ++r) {
         const fs::path path = folder / source.runs[r];
-        std::vector<OccupancyMap> maps(list.size());
-        const auto mapConfig = [&](std::size_t c, const GridSpec& on) {
-          MapperSettings settings = settingsFor(list[c].model, list[c].rule, logs[r].ring, {});
-          settings.pose = pose;
-          maps[c] = mapLog(logs[r], path, on, settings);
-        };
-        for (std::size_t c = 0; c < list.size(); ++c) mapConfig(c, grid);
-        if (std::any_of(maps.begin(), maps.end(),
-                        [&](const OccupancyMap& m) { return !(m.spec == maps.front().spec); })) {
-          const GridSpec all = unionOf(maps);
-          for (std::size_t c = 0; c < list.size(); ++c)
-            if (!(maps[c].spec == all)) mapConfig(c, all);
-        }
-        ScoreOptions common = options;
-        std::vector<const OccupancyMap*> observed;
-        for (const OccupancyMap& m : maps) observed.push_back(&m);
-        common.cellMask = commonObservedCells(observed);
+        const CommonScores run = scoreOnCommonCells(
+            list.size(), grid,
+            [&](std::size_t c, const GridSpec& on) {
+              MapperSettings settings = settingsFor(list[c].model, list[c].rule, logs[r].ring, {});
+              settings.pose = pose;
+              return mapLog(logs[r], path, on, settings);
+            },
+            reference, options, folder / "world.json");
+        const std::vector<OccupancyMap>& maps = run.maps;
         for (std::size_t c = 0; c < list.size(); ++c) {
-          ReferenceScore score;
-          try {
-            score = scoreAgainstReference(maps[c], reference, common);
-          } catch (const MetricsError& e) {
-            throw InputError((folder / "world.json").string() + ": " + e.what());
-          }
+          const ReferenceScore& score = run.scores[c];
           auto& perBenchmark = values[list[c].id()];
           perBenchmark.resize(std::size(kBenchmarks));
           std::vector<std::string> row{source.folder, source.runs[r], poseName(pose), list[c].model,

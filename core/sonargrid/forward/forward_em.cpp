@@ -464,6 +464,10 @@ EmResult runEm(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
     result.iterations = it + 1;
   }
 
+  // The expected hits and passes under m* (the last E-step's), for the posterior's prior.
+  merge(&Chunk::a, hits);
+  merge(&Chunk::b, passes);
+
   // The posterior: each cell's log-odds with the others held at m* (forward_em.h).
   const bool done = forEachChunk(
       chunks.size(), cancel,
@@ -509,7 +513,9 @@ EmResult runEm(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
   map.level.assign(cells, levelOfProbability(0.5));
   for (std::size_t c = 0; c < cells; ++c) {
     if (!observed[c]) continue;
-    const double l = logOdds[c];
+    // The cell's prior: the Laplace estimate of its occupancy from EM's expected hits and passes,
+    // (A + 1) / (A + B + 2), whose log-odds are log((A + 1) / (B + 1)).
+    const double l = std::log((hits[c] + 1.0) / (passes[c] + 1.0)) + logOdds[c];
     const double p = 1.0 / (1.0 + std::exp(-l));
     probability[c] = p;
     evidence[c] = std::max(0.0, 2.0 * p - 1.0);

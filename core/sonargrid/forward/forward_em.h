@@ -44,10 +44,16 @@
 //
 // The posterior (paper §4.3's approximation): each cell's p(occupied) given the readings, with
 // every other cell held at its EM value m*,
-//   log-odds_j = Σ_{readings meeting j} [log p(z | m*, m_j = 1) − log p(z | m*, m_j = 0)],
-// which the map's layers report: p(occ) = σ(log-odds) (unobserved cells 0.5), the 16 levels of it,
-// "filled" where p > 0.5, EM's occupancy m* as its native value (what predictRange() reads) and
-// max(0, 2p − 1) as its evidence; so views, exports and metrics read it unchanged.
+//   log-odds_j = log((A_j + 1) / (B_j + 1))
+//                + Σ_{readings meeting j} [log p(z | m*, m_j = 1) − log p(z | m*, m_j = 0)].
+// The cell's prior is the Laplace estimate of its occupancy from EM's expected hits and passes
+// under m*, (A_j + 1) / (A_j + B_j + 2): where its neighbours explain the readings as well as it
+// does (the cells of one wall at one range) the sum is near 0, and a uniform prior would leave the
+// cell at 0.5 whatever EM found; a cell whose expected counts are near 0 (behind a wall) stays
+// near 0.5. The map's layers report it: p(occ) = σ(log-odds) (unobserved cells 0.5), the 16
+// levels of it, "filled" where p > 0.5, EM's occupancy m* as its native value (what
+// predictRange() reads) and max(0, 2p − 1) as its evidence; so views, exports and metrics read it
+// unchanged.
 //
 // Deterministic and threaded by the thread policy (base/concurrency.h): the readings are cut into
 // chunks of a fixed size whatever the thread count; each chunk's E-step sums into arrays of its
