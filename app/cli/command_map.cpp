@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include "sonargrid/data/scan_poses.h"
 #include "sonargrid/export/map_export.h"
 #include "sonargrid/forward/forward_em.h"
+#include "stop_signal.h"
 #include "thread_flags.h"
 
 namespace sg::cli {
@@ -106,20 +108,20 @@ GridSpec fittingGridOf(const Dataset& data, const MapOptions& o, const std::stri
 namespace {
 
 // The forward model's map: EM over the whole log (docs/forward-model.md), with a line of progress
-// per iteration on stderr. Ctrl-C ends the process as it would any mapping: no file is written
-// before the map is made. (`compare` builds several maps at once, so no handler is installed here.)
+// per iteration on stderr; `cancel` stops it between iterations (MapStopped).
 BuiltMap buildForwardMap(const Dataset& data, const MapOptions& o, const std::string& logPath,
-                         const GridSpec& grid, BuiltMap out) {
+                         const GridSpec& grid, BuiltMap out, const std::atomic<bool>* cancel) {
   const forward::ForwardSettings settings = forward::settingsOf(o.settings.parameters);
   try {
     const auto t0 = std::chrono::steady_clock::now();
     const std::vector<forward::ForwardBeam> beams =
         forward::beamsOf(data, o.settings.pose, o.until);
     forward::EmResult em =
-        forward::runEm(beams, grid, settings, nullptr, [&](const forward::EmProgress& p) {
+        forward::runEm(beams, grid, settings, cancel, [&](const forward::EmProgress& p) {
           std::cerr << "sonargrid-cli: EM iteration " << p.iteration << " of at most " << p.cap
                     << ": log-likelihood " << std::setprecision(10) << p.logLikelihood << '\n';
         });
+    if (em.cancelled) throw MapStopped{};
     out.elapsedMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     out.readings = em.readings;
@@ -134,7 +136,8 @@ BuiltMap buildForwardMap(const Dataset& data, const MapOptions& o, const std::st
 }  // namespace
 
 BuiltMap buildMap(const Dataset& data, const MapOptions& o, const std::string& logPath,
-                  const std::optional<GridSpec>& onGrid, FootprintObserver* observer) {
+                  const std::optional<GridSpec>& onGrid, FootprintObserver* observer,
+                  const std::atomic<bool>* cancel) {
   if (o.settings.pose == PoseSource::Truth && !anyScanHasPose(data, PoseSource::Truth)) {
     throw InputError(logPath + ": " + kNoTruePose + "; map with --pose odom");
   }
@@ -151,13 +154,13 @@ BuiltMap buildMap(const Dataset& data, const MapOptions& o, const std::string& l
                        " writes no per-reading evidence to take statistics of; choose an inverse "
                        "model");
     }
-    return buildForwardMap(data, o, logPath, grid, std::move(out));
+    return buildForwardMap(data, o, logPath, grid, std::move(out), cancel);
   }
   try {
     Mapper mapper(data.ring, grid, o.settings);
     mapper.setObserver(observer);
     const auto t0 = std::chrono::steady_clock::now();
-    mapper.mapDataset(data, o.until);
+    if (!mapper.mapDataset(data, o.until, cancel)) throw MapStopped{};
     out.elapsedMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     out.readings = mapper.readingsIntegrated();
@@ -180,7 +183,20 @@ int runMap(Arguments& args) {
     throw UsageError("--legend and --scale shape the PNG; give --png FILE");
 
   const Dataset data = loadLog(o.log, o.read);
-  const BuiltMap built = buildMap(data, o, o.log);
+  // Ctrl-C (SIGINT) or SIGTERM stops the mapping (the forward model's EM takes up to a minute):
+  // nothing is written, exit status 128 + the signal.
+  BuiltMap built;
+  {
+    const StopOnSignal stop;
+    try {
+      built = buildMap(data, o, o.log, std::nullopt, nullptr, &stop.flag());
+    } catch (const MapStopped&) {
+      const int signal = stop.signalNumber() == 0 ? SIGINT : stop.signalNumber();
+      std::cerr << "sonargrid-cli: map stopped by " << (signal == SIGTERM ? "SIGTERM" : "SIGINT")
+                << "; nothing written\n";
+      return 128 + signal;
+    }
+  }
 
   if (png) {
     PngOptions po;

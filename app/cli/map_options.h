@@ -5,6 +5,7 @@
 // log-reading flags --format, --lenient, --robot, --columns, --poses (log_flags.cpp) that every
 // command reading a log takes.
 
+#include <atomic>
 #include <limits>
 #include <optional>
 #include <string>
@@ -60,10 +61,14 @@ struct BuiltMap {
 // The log's fitting grid at --cell; GridLimitError naming `logPath`, the scan and the grid limit
 // when it cannot be made (main() makes that exit status 2).
 GridSpec fittingGridOf(const Dataset& data, const MapOptions& options, const std::string& logPath);
+// A map stopped part-way by `cancel` (buildMap): nothing was made.
+struct MapStopped {};
+
 // Maps `data`, read from `logPath` (for messages), on `grid` — by default the log's own fitting
-// grid at --cell — feeding `observer` (if any) every footprint.
+// grid at --cell — feeding `observer` (if any) every footprint. `cancel` (a signal's flag, for a
+// command that maps one log: `map`) stops it part-way with MapStopped.
 BuiltMap buildMap(const Dataset& data, const MapOptions& options, const std::string& logPath,
                   const std::optional<GridSpec>& grid = std::nullopt,
-                  FootprintObserver* observer = nullptr);
+                  FootprintObserver* observer = nullptr, const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace sg::cli

@@ -6,6 +6,7 @@
 
 #include <QByteArray>
 #include <QDir>
+#include <QElapsedTimer>
 #include <QFile>
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -22,7 +23,10 @@
 #include <QtTest>
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <vector>
+
+#include <sys/types.h>
 
 #include "cli_run.h"
 
@@ -118,6 +122,7 @@ class TstCli : public QObject {
   void mapRosMap();
   void mapTextSummary();
   void mapForwardModel();
+  void mapStopsOnSigint();
 
   void errors_data();
   void errors();
@@ -779,6 +784,35 @@ void TstCli::mapForwardModel() {
   const QStringList second = rows[2].split(',');
   QCOMPARE(second[header.indexOf("sigma")].toDouble(), 0.05);
   QCOMPARE(second[header.indexOf("iop_mm")].toDouble(), iop);
+}
+
+// Ctrl-C during the forward model's EM on the office log (112 016 readings, about a second an
+// iteration): the map stops between iterations, nothing is written, exit status 128 + SIGINT.
+void TstCli::mapStopsOnSigint() {
+  const QString png = tmp_.filePath("stopped.png");
+  QProcess p;
+  p.setProgram(kCli);
+  p.setArguments({"map", "--log", QStringLiteral(SONARGRID_DATASETS "/office/office.sglog"),
+                  "--model", "forward-em", "--png", png});
+  p.start();
+  QVERIFY(p.waitForStarted(10000));
+  QByteArray err;
+  QElapsedTimer clock;
+  clock.start();
+  while (!err.contains("EM iteration 1 ") && clock.elapsed() < 120000 &&
+         p.state() == QProcess::Running) {
+    p.waitForReadyRead(200);
+    err += p.readAllStandardError();
+  }
+  QVERIFY2(err.contains("EM iteration 1 "), err.constData());
+  QCOMPARE(::kill(static_cast<pid_t>(p.processId()), SIGINT), 0);
+  QVERIFY(p.waitForFinished(60000));
+  err += p.readAllStandardError();
+  QCOMPARE(p.exitStatus(), QProcess::NormalExit);
+  QCOMPARE(p.exitCode(), 128 + SIGINT);
+  QVERIFY2(err.contains("sonargrid-cli: map stopped by SIGINT; nothing written"), err.constData());
+  QVERIFY(!err.contains("EM iteration 50 "));
+  QVERIFY(!QFile::exists(png));
 }
 
 // ---- errors -------------------------------------------------------------------------------------
