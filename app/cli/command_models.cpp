@@ -12,6 +12,8 @@
 #include "commands.h"
 #include "sonargrid/engine/sensor_model.h"
 #include "sonargrid/engine/update_rule.h"
+#include "sonargrid/forward/catalog.h"
+#include "sonargrid/forward/forward_em.h"
 
 namespace sg::cli {
 namespace {
@@ -100,6 +102,12 @@ void printMarkdown() {
               << "Native value: " << markdownText(r.nativeName) << ".\n\n";
     printMarkdownParameters(r.parameters);
   }
+  std::cout << "\n## Forward model parameters\n\n"
+            << "### `" << forward::kModelName << "` — " << markdownText(forward::kTitle) << "\n\n"
+            << "Source: " << markdownText(forward::mapModelSource(forward::kModelName)) << ".  \n"
+            << "Rule: `" << forward::kRuleName
+            << "` alone (EM over the whole log; docs/forward-model.md).\n\n";
+  printMarkdownParameters(forward::forwardParameterSpecs());
   std::cout << "\n## Compatibility matrix\n\n"
             << "Rows are sensor models, columns update rules; ✓ = allowed, ✗ = refused.\n\n"
             << "| model |";
@@ -153,6 +161,13 @@ int runModels(Arguments& args) {
         if (compatibility(m, r).allowed) out["compatible"].push_back({m, r});
       }
     }
+    // The forward model learned by EM, with EM as its own rule (docs/forward-model.md): beside the
+    // inverse models, whose pairs `compatible` lists.
+    out["forward"] = nlohmann::ordered_json::array();
+    out["forward"].push_back({{"name", forward::kModelName},
+                              {"title", forward::kTitle},
+                              {"rule", forward::kRuleName},
+                              {"parameters", parametersJson(forward::forwardParameterSpecs())}});
     std::cout << out.dump() << '\n';
     return 0;
   }
@@ -168,6 +183,10 @@ int runModels(Arguments& args) {
     std::cout << "  " << r.name << " — " << r.title << " (" << r.source << ")\n";
     printParameters(r.parameters);
   }
+  std::cout << "\nForward model (its own rule, " << forward::kRuleName << "):\n"
+            << "  " << forward::kModelName << " — " << forward::kTitle << " ("
+            << forward::mapModelSource(forward::kModelName) << ")\n";
+  printParameters(forward::forwardParameterSpecs());
   std::cout << "\nPairs that cannot be combined:\n";
   for (const std::string& m : sensorModelNames()) {
     for (const std::string& r : updateRuleNames()) {

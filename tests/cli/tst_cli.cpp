@@ -319,7 +319,14 @@ void TstCli::modelsText() {
 }
 
 void TstCli::modelsJson() {
-  QCOMPARE(sorted(models_.keys()), sorted({"models", "rules", "compatible"}));
+  QCOMPARE(sorted(models_.keys()), sorted({"models", "rules", "compatible", "forward"}));
+  // The forward model learned by EM, with its own rule (docs/forward-model.md).
+  const QJsonArray forward = models_.value("forward").toArray();
+  QCOMPARE(forward.size(), 1);
+  QCOMPARE(forward[0].toObject().value("name").toString(), QString("forward-em"));
+  QCOMPARE(forward[0].toObject().value("rule").toString(), QString("em"));
+  QCOMPARE(sorted(namesOf(forward[0].toObject().value("parameters").toArray())),
+           sorted({"omega", "sigma", "p_rand", "p_max", "p_init", "iterations"}));
   const QJsonArray models = models_.value("models").toArray();
   const QJsonArray rules = models_.value("rules").toArray();
   QCOMPARE(models.size(), 5);
@@ -342,7 +349,7 @@ void TstCli::modelsJson() {
 
 void TstCli::modelsParameters_data() {
   QTest::addColumn<QJsonArray>("parameters");
-  for (const QString& list : QStringList{"models", "rules"}) {
+  for (const QString& list : QStringList{"models", "rules", "forward"}) {
     for (const QJsonValue& v : models_.value(list).toArray()) {
       const QJsonObject o = v.toObject();
       if (!o.contains("parameters")) continue;  // the contract declares them for models only
