@@ -13,6 +13,7 @@
 #include <QtTest>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "sonargrid/base/concurrency.h"
@@ -286,7 +287,8 @@ class TstForwardEm : public QObject {
     std::vector<double> z;
     for (int i = 0; i < 5000; ++i) z.push_back((i + 0.5) * 0.001);
     const RangePrediction p = predictRange(along(1.0), rowGrid(), occupancy, s, z);
-    QCOMPARE(p.noEcho, 0.1);  // p_max: a failure, whatever the cone meets
+    // p_max (a failure, whatever the cone meets) and a random reading in the last 0.5 m bin.
+    QCOMPARE(p.noEcho, 0.1 + 0.05 * 0.5 / 5.0);
     double integral = 0.0;
     for (const double d : p.density) integral += d * 0.001;
     QVERIFY(std::abs(integral - 0.9) < 1e-6);
@@ -296,7 +298,7 @@ class TstForwardEm : public QObject {
     // Every cell free: every reading is random or no echo.
     const RangePrediction none =
         predictRange(along(1.0), rowGrid(), std::vector<double>(4, 0.0), s, z);
-    QCOMPARE(none.noEcho, 0.85 + 0.1);
+    QCOMPARE(none.noEcho, 0.85 + 0.1 + 0.05 * 0.5 / 5.0);
   }
 
   void badSettingsAndCancelSayWhat() {
@@ -305,6 +307,23 @@ class TstForwardEm : public QObject {
     QVERIFY_THROWS_EXCEPTION(ForwardError, runEm(doorReadings(), rowGrid(), s));
     s = handSettings(1.0);
     QVERIFY_THROWS_EXCEPTION(ForwardError, runEm(doorReadings(), rowGrid(), s));
+    // Beams EM cannot use, named by their index.
+    for (const double maxRange : {0.0, -1.0, std::numeric_limits<double>::infinity(),
+                                  std::numeric_limits<double>::quiet_NaN()}) {
+      std::vector<ForwardBeam> beams = doorReadings();
+      beams[2].maxRange = maxRange;
+      try {
+        runEm(beams, rowGrid(), handSettings(0.05));
+        QFAIL("a bad maximum range was taken");
+      } catch (const ForwardError& e) {
+        QVERIFY2(QString(e.what()).contains("reading 2: the maximum range"), e.what());
+      }
+    }
+    for (const double range : {-0.5, std::numeric_limits<double>::quiet_NaN()}) {
+      std::vector<ForwardBeam> beams = doorReadings();
+      beams[1].range = range;
+      QVERIFY_THROWS_EXCEPTION(ForwardError, runEm(beams, rowGrid(), handSettings(0.05)));
+    }
     std::atomic<bool> cancel{true};
     const EmResult r = runEm(doorReadings(), rowGrid(), handSettings(0.05), &cancel);
     QVERIFY(r.cancelled);

@@ -67,6 +67,20 @@ void checkSettings(const ForwardSettings& s) {
   if (s.iterations < 0) bad("the iteration cap must not be negative");
 }
 
+// A beam EM can use: ForwardError naming reading `index` otherwise.
+void checkBeam(const ForwardBeam& b, std::size_t index) {
+  const auto bad = [&](const std::string& what) {
+    throw ForwardError("forward model: reading " + std::to_string(index) + ": " + what);
+  };
+  if (!(std::isfinite(b.maxRange) && b.maxRange > 0.0))
+    bad("the maximum range must be a positive length, got " + std::to_string(b.maxRange));
+  if (std::isnan(b.range) || b.range < 0.0)
+    bad("the range must be a length or no echo, got " + std::to_string(b.range));
+  if (!(std::isfinite(b.sensor.x()) && std::isfinite(b.sensor.y()) &&
+        std::isfinite(b.sensor.heading)))
+    bad("the transducer's pose is not finite");
+}
+
 double gaussian(double x, double sigma) {
   const double t = x / sigma;
   return std::exp(-0.5 * t * t) / (sigma * std::sqrt(2.0 * std::numbers::pi));
@@ -346,6 +360,7 @@ void termsOf(const Chunk& c, std::size_t i, const ForwardBeam& beam, const Forwa
 Cones conesOf(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
               const ForwardSettings& s) {
   checkSettings(s);
+  for (std::size_t i = 0; i < beams.size(); ++i) checkBeam(beams[i], i);
   const std::vector<Chunk> chunks = chunksOf(beams, grid, s);
   Cones out;
   for (const Chunk& c : chunks) {
@@ -373,6 +388,7 @@ EmResult runEm(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
                const std::function<void(const EmProgress&)>& progress,
                const std::atomic<bool>* stop) {
   checkSettings(s);
+  for (std::size_t i = 0; i < beams.size(); ++i) checkBeam(beams[i], i);
   if (grid.cellCount() == 0) throw ForwardError("forward model: the grid has no cells");
   std::vector<Chunk> chunks = chunksOf(beams, grid, s);
   const std::size_t cells = grid.cellCount();
@@ -539,6 +555,7 @@ RangePrediction predictRange(const ForwardBeam& beam, const GridSpec& grid,
                              const std::vector<double>& occupancy, const ForwardSettings& s,
                              const std::vector<double>& ranges) {
   checkSettings(s);
+  checkBeam(beam, 0);
   if (occupancy.size() != grid.cellCount())
     throw ForwardError("forward model: the occupancy is not the grid's size");
   ForwardBeam whole = beam;
@@ -557,7 +574,9 @@ RangePrediction predictRange(const ForwardBeam& beam, const GridSpec& grid,
   }
   for (std::size_t i = 0; i < ranges.size(); ++i)
     if (ranges[i] >= 0.0 && ranges[i] < beam.maxRange) out.density[i] += s.pRandom / beam.maxRange;
-  out.noEcho = w * reached + s.pMax;
+  // As the likelihood counts a no-echo reading: nothing met, a failure, or a random reading in the
+  // last bin of width Δ.
+  out.noEcho = w * reached + s.pMax + s.pRandom * grid.cellSize / beam.maxRange;
   return out;
 }
 

@@ -147,14 +147,16 @@ struct EmResult {
   std::vector<double> logLikelihood;
   int iterations = 0;      // M-steps done
   bool converged = false;  // stopped by the tolerance, not the cap
-  bool cancelled = false;  // stopped by `cancel`: the map is the last iteration's, still valid
+  bool cancelled = false;  // stopped by `cancel` or `stop`: the result holds no map
   std::size_t readings = 0;
   std::size_t coneCells = 0;  // entries of all cones: what EM touches per iteration
 };
 
 // EM over `beams` on `grid`. `progress` (if any) is called after every iteration on the calling
 // thread; `cancel` and `stop` (a sweep's own stop; either may be null) are read between iterations
-// and between chunks. Throws ForwardError for settings out of range or a grid without cells.
+// and between chunks. Throws ForwardError for settings out of range, a grid without cells, or a
+// beam whose maximum range is not a positive finite length, whose range is negative or NaN, or
+// whose pose is not finite (naming the reading).
 EmResult runEm(const std::vector<ForwardBeam>& beams, const GridSpec& grid,
                const ForwardSettings& settings, const std::atomic<bool>* cancel = nullptr,
                const std::function<void(const EmProgress&)>& progress = {},
@@ -165,7 +167,8 @@ bool isForwardModelMap(const OccupancyMap& map);
 
 // For the beam view: one reading's predicted range distribution under the map `occupancy` (per
 // cell of `grid`): the density of z at each of `ranges` (per metre), and the probability of no
-// echo. What a teacher sets beside the measured range.
+// echo (a failure, nothing met, or a random reading in the last bin of width Δ, as the likelihood
+// counts it). What a teacher sets beside the measured range.
 struct RangePrediction {
   std::vector<double> density;
   double noEcho = 0.0;
