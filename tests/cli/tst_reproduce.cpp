@@ -948,6 +948,10 @@ class TestReproduce : public QObject {
   // from fresh runs, is in the page word for word under its preset's heading; the forward model's
   // wins the page states hold in the summary.
   void bundledThrun2003AsDocumented() {
+    // Its own ctest entry (tst_reproduce_thrun2003, label `reproduce`) sets the variable: two
+    // minutes on two cores, far longer under the sanitizers, whose jobs leave that label out.
+    if (qEnvironmentVariable("SONARGRID_REPRODUCE_THRUN") != "1")
+      QSKIP("run by the ctest entry tst_reproduce_thrun2003 (SONARGRID_REPRODUCE_THRUN=1)");
     const QJsonObject j = bundledSummary("thrun2003");
     QCOMPARE(j["presets"].toObject().keys(), (QStringList{"clean", "default", "harsh"}));
     const QString page = readText(QStringLiteral(SONARGRID_DOCS "/forward-model.md"));

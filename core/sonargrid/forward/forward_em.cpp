@@ -188,6 +188,13 @@ void sortByDistance(std::vector<std::pair<float, std::uint32_t>>& v, double widt
   v.swap(sorted);
 }
 
+// floor(v) as an int, clamped to [lo, hi] first: a cast of a double out of int's range is
+// undefined (a beam far off the grid).
+int clampedFloor(double v, int lo, int hi) {
+  return static_cast<int>(
+      std::clamp(std::floor(v), static_cast<double>(lo), static_cast<double>(hi)));
+}
+
 // The cone of one beam, appended as (distance, cell) pairs in detection order.
 void coneOf(const ForwardBeam& beam, const GridSpec& grid, const ForwardSettings& s,
             std::vector<std::pair<float, std::uint32_t>>& out) {
@@ -214,11 +221,10 @@ void coneOf(const ForwardBeam& beam, const GridSpec& grid, const ForwardSettings
     if (std::abs(wrapAngle(a - heading)) <= half) take(a);
   }
   const double c = grid.cellSize;
-  const int x0 = std::max(0, static_cast<int>(std::floor((lx - grid.origin.x()) / c)));
-  const int x1 = std::min(grid.width - 1, static_cast<int>(std::floor((hx - grid.origin.x()) / c)));
-  const int y0 = std::max(0, static_cast<int>(std::floor((ly - grid.origin.y()) / c)));
-  const int y1 =
-      std::min(grid.height - 1, static_cast<int>(std::floor((hy - grid.origin.y()) / c)));
+  const int x0 = clampedFloor((lx - grid.origin.x()) / c, 0, grid.width);
+  const int x1 = clampedFloor((hx - grid.origin.x()) / c, -1, grid.width - 1);
+  const int y0 = clampedFloor((ly - grid.origin.y()) / c, 0, grid.height);
+  const int y1 = clampedFloor((hy - grid.origin.y()) / c, -1, grid.height - 1);
   const double reach2 = reach * reach;
   // Each row's cells between the cone's edges and inside its arc, from the half-planes
   // cross(right edge, p) >= 0 and cross(p, left edge) >= 0 (the wedge, for an aperture under
@@ -242,8 +248,8 @@ void coneOf(const ForwardBeam& beam, const GridSpec& grid, const ForwardSettings
     bound(-ry, -rx * dy);
     bound(lye, lxe * dy);
     if (hi < lo) continue;
-    const int first = std::max(x0, static_cast<int>(std::floor((sx + lo - ox) / c - 0.5)) - 1);
-    const int last = std::min(x1, static_cast<int>(std::ceil((sx + hi - ox) / c - 0.5)) + 1);
+    const int first = std::max(x0, clampedFloor((sx + lo - ox) / c - 0.5, -2, grid.width) - 1);
+    const int last = std::min(x1, clampedFloor((sx + hi - ox) / c + 0.5, -2, grid.width) + 1);
     for (int x = first; x <= last; ++x) {
       const double dx = ox + (x + 0.5) * c - sx;
       const double d2 = dx * dx + dy * dy;
