@@ -10,6 +10,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -28,6 +29,8 @@
 #include "sonargrid/engine/sensor_model.h"
 #include "sonargrid/engine/update_rule.h"
 #include "sonargrid/export/map_export.h"
+#include "sonargrid/forward/catalog.h"
+#include "sonargrid/forward/forward_em.h"
 #include "sonargrid/io/csv_log.h"
 #include "sonargrid/io/log_reader.h"
 #include "sonargrid/io/start_pose.h"
@@ -116,13 +119,14 @@ std::string joined(const std::vector<std::string>& names) {
 // (ParameterError naming the parameter and its range otherwise): what `--model --rule --set` do.
 MapperSettings settingsOf(const std::string& model, const std::string& rule,
                           const std::string& pose, const py::kwargs& params) {
-  if (!makeSensorModel(model))
-    throw py::value_error("unknown model '" + model + "'; choose one of " +
-                          joined(sensorModelNames()));
-  if (!makeUpdateRule(rule))
-    throw py::value_error("unknown rule '" + rule + "'; choose one of " +
-                          joined(updateRuleNames()));
-  const Compatibility c = compatibility(model, rule);
+  // The inverse models with their rules, and the forward model with EM (docs/forward-model.md).
+  const std::vector<std::string> models = forward::mapModelNames();
+  const std::vector<std::string> rules = forward::mapRuleNames();
+  if (std::find(models.begin(), models.end(), model) == models.end())
+    throw py::value_error("unknown model '" + model + "'; choose one of " + joined(models));
+  if (std::find(rules.begin(), rules.end(), rule) == rules.end())
+    throw py::value_error("unknown rule '" + rule + "'; choose one of " + joined(rules));
+  const Compatibility c = forward::mapCompatibility(model, rule);
   if (!c.allowed)
     throw py::value_error("model '" + model + "' cannot be used with rule '" + rule +
                           "': " + c.reason);
@@ -130,7 +134,7 @@ MapperSettings settingsOf(const std::string& model, const std::string& rule,
   s.model = model;
   s.rule = rule;
   s.pose = poseOf(pose);
-  s.parameters = defaultParameters(model, rule);
+  s.parameters = forward::mapDefaultParameters(model, rule);
   for (const auto& [key, value] : params) {
     const std::string name = py::str(key);
     if (!py::isinstance<py::int_>(value) && !py::isinstance<py::float_>(value) &&
@@ -158,6 +162,21 @@ OccupancyMap buildMap(const Dataset& data, const std::string& path, const Mapper
                       std::size_t* readings) {
   if (settings.pose == PoseSource::Truth && !anyScanHasPose(data, PoseSource::Truth))
     throw MapperError(path + ": " + kNoTruePose + "; map with pose='odom'");
+  if (forward::isForwardModel(settings.model)) {
+    // EM over the whole log (docs/forward-model.md); no per-reading footprints to observe.
+    if (observer)
+      throw MapperError(path +
+                        ": VSDNS replays an inverse model's evidence; the forward model "
+                        "learns its map by EM and has none");
+    try {
+      forward::EmResult em = forward::runEm(forward::beamsOf(data, settings.pose, until), grid,
+                                            forward::settingsOf(settings.parameters));
+      if (readings) *readings = em.readings;
+      return std::move(em.map);
+    } catch (const forward::ForwardError& e) {
+      throw MapperError(path + ": " + e.what());
+    }
+  }
   try {
     Mapper mapper(data.ring, grid, settings);
     mapper.setObserver(observer);
@@ -463,6 +482,15 @@ py::dict modelsPy() {
   out["models"] = models;
   out["rules"] = rules;
   out["compatible"] = compatible;
+  // The forward model learned by EM, with its own rule (as `models --json`'s `forward`).
+  py::dict f;
+  f["name"] = forward::kModelName;
+  f["title"] = forward::kTitle;
+  f["rule"] = forward::kRuleName;
+  f["parameters"] = parameterList(forward::forwardParameterSpecs());
+  py::list forwardModels;
+  forwardModels.append(f);
+  out["forward"] = forwardModels;
   return out;
 }
 

@@ -86,6 +86,20 @@ def test_map_equals_cli_map_json(room, cli, datasets, model, rule):
     assert not m.observed.flags.owndata
 
 
+def test_forward_model_equals_cli_map_json(room, cli, datasets):
+    # docs/forward-model.md: the forward model learned by EM, its rule EM itself, as the CLI maps it.
+    m = sonargrid.map(room, model="forward-em", rule="em", cell=0.05, iterations=3)
+    want = cli("map", "--log", datasets / "room" / "room.sglog", "--model", "forward-em",
+               "--iterations", "3", "--cell", "0.05", "--json")
+    assert m.readings == want["readings"]
+    assert m.cells_filled == want["cells_filled"]
+    assert m.cv_histogram == want["cv_histogram"]
+    assert m.params == want["params"]
+    assert np.all(m.p[~m.observed] == 0.5) and np.all(m.levels[~m.observed] == 8)
+    with pytest.raises(ValueError, match="cannot be used with rule"):
+        sonargrid.map(room, model="forward-em", rule="bayes")
+
+
 def test_origin_is_the_lower_left_corner(room):
     # Row 0 is the grid's lowest y: the cell holding the first odometry position is the one at
     # floor((x - origin) / cell) and was observed (a sonar mounted 0.14 m away looked past it).
