@@ -98,11 +98,13 @@ std::vector<ParameterSpec> forwardParameterSpecs() {
   const ForwardSettings d;
   return {
       {"omega", "ω", "deg", 5.0, 90.0, d.omegaDeg,
-       "Thrun 2003 §3 (the cone of cells a reading meets)",
+       "Thrun 2003, forward model (the cone of cells a reading meets)",
        "Full aperture of the sonar cone: the cells a reading can meet."},
-      {"sigma", "σ", "m", 0.005, 0.5, d.sigma, "Thrun 2003 §3 (Gaussian around the cause)",
+      {"sigma", "σ", "m", 0.005, 0.5, d.sigma,
+       "Thrun 2003, forward model (Gaussian around the cause)",
        "Standard deviation of a range around the distance of the cell that caused it."},
-      {"p_rand", "p_rand", "", 0.001, 0.5, d.pRandom, "Thrun 2003 §3 (random measurements)",
+      {"p_rand", "p_rand", "", 0.001, 0.5, d.pRandom,
+       "Thrun 2003, forward model (random measurements)",
        "Share of readings that are random, uniform over the sonar's range."},
       {"p_max", "p_max", "", 0.0, 0.5, d.pMax, "Probabilistic Robotics §6.3.1 (max-range failures)",
        "Share of readings that come back without an echo whatever the cone meets (specular "

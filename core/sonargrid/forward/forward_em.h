@@ -11,10 +11,10 @@
 // doorway is then explained by the far wall only if the doorway is free, so the cone of a reading
 // that saw the door frame does not close the door.
 //
-// The forward model (paper §3; docs/forward-model.md, "The model"). A reading z from a transducer
-// of maximum range z_max meets the cells whose centres lie in its cone (aperture ω), ordered by
-// their distance d_k from the transducer (ties by cell index): the order in which they can be
-// detected. Each cell k is occupied with probability m_k. The reading is
+// The forward model (the paper's; docs/forward-model.md, "The model"). A reading z from a
+// transducer of maximum range z_max meets the cells whose centres lie in its cone (aperture ω),
+// ordered by their distance d_k from the transducer (ties by cell index): the order in which they
+// can be detected. Each cell k is occupied with probability m_k. The reading is
 //   - random, with probability p_rand: uniform over [0, z_max];
 //   - a max-range failure, with probability p_max: no echo whatever the cone meets (a specular
 //     wall; the beam model's max-range component, Probabilistic Robotics §6.3.1);
@@ -30,7 +30,7 @@
 // echo's cone ends at z + 4σ: a cell farther cannot cause it, and a reading caused nearer tells
 // nothing of it. A no-echo reading's cone reaches z_max.
 //
-// EM (paper §4; docs/forward-model.md, "EM"). The hidden variable of a reading is its cause c:
+// EM (the paper's; docs/forward-model.md, "EM"). The hidden variable of a reading is its cause c:
 // random, a max-range failure, cell k of its cone, or "nothing met". The E-step gives each cause
 // its responsibility e = p(c | z, m) under the present map; the M-step maximises the expected
 // log-likelihood
@@ -42,7 +42,7 @@
 // starts uniform at p_init; it stops when an iteration raises the log-likelihood by less than
 // kRelativeTolerance of its size, or after the iteration cap.
 //
-// The posterior (paper §4.3's approximation): each cell's p(occupied) given the readings, with
+// The posterior (the paper's approximation): each cell's p(occupied) given the readings, with
 // every other cell held at its EM value m*,
 //   log-odds_j = log((A_j + 1) / (B_j + 1))
 //                + Σ_{readings meeting j} [log p(z | m*, m_j = 1) − log p(z | m*, m_j = 0)].
