@@ -203,6 +203,7 @@ int runCompare(Arguments& args) {
       MapOptions o = base;
       o.log = logPath;
       o.settings = configs[c].settings;
+      o.progress = false;  // configurations map at once: their EM lines would interleave
       maps[c] = buildMap(data, o, logPath, grid).map;
     };
     forEachParallel(configs.size(), [&](std::size_t c) { mapConfig(c, fitting); });

@@ -118,6 +118,7 @@ BuiltMap buildForwardMap(const Dataset& data, const MapOptions& o, const std::st
         forward::beamsOf(data, o.settings.pose, o.until);
     forward::EmResult em =
         forward::runEm(beams, grid, settings, cancel, [&](const forward::EmProgress& p) {
+          if (!o.progress) return;
           std::cerr << "sonargrid-cli: EM iteration " << p.iteration << " of at most " << p.cap
                     << ": log-likelihood " << std::setprecision(10) << p.logLikelihood << '\n';
         });

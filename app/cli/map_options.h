@@ -25,6 +25,9 @@ struct MapOptions {
   MapperSettings settings;
   double cell = 0.05;
   double until = std::numeric_limits<double>::infinity();
+  // The forward model's line of progress per EM iteration on stderr (`map`, `score`); `compare`,
+  // which maps several configurations at once, turns it off.
+  bool progress = true;
 };
 
 // Consumes the map flags; throws UsageError for bad, missing or unknown ones (model, rule, --set,

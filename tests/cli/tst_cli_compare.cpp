@@ -106,6 +106,9 @@ void TstCliCompare::meanAndSdOverTwoLogsAreThoseOfScore_data() {
                                 << "log";
   QTest::newRow("himm/himm") << "himm"
                              << "himm";
+  // The forward model learned by EM, with EM as its rule (docs/forward-model.md).
+  QTest::newRow("forward-em/em") << "forward-em"
+                                 << "em";
 }
 
 void TstCliCompare::meanAndSdOverTwoLogsAreThoseOfScore() {
@@ -116,9 +119,10 @@ void TstCliCompare::meanAndSdOverTwoLogsAreThoseOfScore() {
   const QString config = model + "/" + rule;
   const QJsonObject c =
       compareOf({"--log", kLog1, "--log", kLog2, "--reference", kWorld, "--config", "hpf/addition",
-                 "--config", "konolige/log", "--config", "himm/himm", "--cells", "own"});
+                 "--config", "konolige/log", "--config", "himm/himm", "--config", "forward-em/em",
+                 "--cells", "own"});
   QCOMPARE(c["cells"].toString(), QString("own"));
-  QCOMPARE(c["rows"].toArray().size(), 3);
+  QCOMPARE(c["rows"].toArray().size(), 4);
   const QJsonObject row = rowOf(c, config);
   QVERIFY2(!row.isEmpty(), qPrintable(config));
   const QJsonObject a = scoreOf(kLog1, model, rule), b = scoreOf(kLog2, model, rule);
@@ -245,6 +249,10 @@ void TstCliCompare::badFlags_data() {
                                 << "--config 'hpf/votes'";
   QTest::newRow("incompatible") << base + QStringList{"--config", "hpf/himm"}
                                 << "--config 'hpf/himm'";
+  QTest::newRow("forward model with a rule")
+      << base + QStringList{"--config", "forward-em/bayes"} << "--config 'forward-em/bayes'";
+  QTest::newRow("EM with an inverse model")
+      << base + QStringList{"--config", "hpf/em"} << "--config 'hpf/em'";
   QTest::newRow("unknown parameter")
       << base + QStringList{"--config", "hpf/bayes:bogus=1"} << "--config 'hpf/bayes:bogus=1'";
   QTest::newRow("out of range") << base + QStringList{"--config", "hpf/bayes:epsilon=2"}
