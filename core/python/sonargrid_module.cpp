@@ -20,6 +20,7 @@
 #include <tuple>
 #include <vector>
 
+#include "declarations.h"
 #include "sonargrid/base/atomic_file.h"
 #include "sonargrid/base/concurrency.h"
 #include "sonargrid/base/log_error.h"
@@ -438,59 +439,6 @@ py::dict goodnessPy(const Map& map, const std::optional<Log>& secondLog,
   out["entropy_bits_grid"] = entropy.totalBits;
   out["two_run_positive"] = twoRuns ? py::object(py::int_(twoRuns->positive)) : py::none();
   out["two_run_negative"] = twoRuns ? py::object(py::int_(twoRuns->negative)) : py::none();
-  return out;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Declarations
-
-py::list parameterList(const std::vector<ParameterSpec>& specs) {
-  py::list list;
-  for (const ParameterSpec& s : specs) {
-    py::dict d;
-    d["name"] = s.name;
-    d["symbol"] = s.symbol;
-    d["unit"] = s.unit;
-    d["min"] = s.min;
-    d["max"] = s.max;
-    d["default"] = s.defaultValue;
-    d["source"] = s.source;
-    d["integer"] = s.integer;
-    d["description"] = s.description;
-    list.append(d);
-  }
-  return list;
-}
-
-// The structure of `sonargrid-cli models --json`.
-py::dict modelsPy() {
-  py::dict out;
-  py::list models, rules, compatible;
-  // A model's or a rule's declaration (ModelInfo and RuleInfo share these three fields).
-  auto declared = [](const auto& info) {
-    py::dict d;
-    d["name"] = info.name;
-    d["title"] = info.title;
-    d["parameters"] = parameterList(info.parameters);
-    return d;
-  };
-  for (const std::string& name : sensorModelNames()) models.append(declared(sensorModelInfo(name)));
-  for (const std::string& name : updateRuleNames()) rules.append(declared(updateRuleInfo(name)));
-  for (const std::string& m : sensorModelNames())
-    for (const std::string& r : updateRuleNames())
-      if (compatibility(m, r).allowed) compatible.append(py::make_tuple(m, r));
-  out["models"] = models;
-  out["rules"] = rules;
-  out["compatible"] = compatible;
-  // The forward model learned by EM, with its own rule (as `models --json`'s `forward`).
-  py::dict f;
-  f["name"] = forward::kModelName;
-  f["title"] = forward::kTitle;
-  f["rule"] = forward::kRuleName;
-  f["parameters"] = parameterList(forward::forwardParameterSpecs());
-  py::list forwardModels;
-  forwardModels.append(f);
-  out["forward"] = forwardModels;
   return out;
 }
 
