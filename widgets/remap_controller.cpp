@@ -4,6 +4,7 @@
 #include <QMetaObject>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <functional>
 #include <optional>
@@ -110,6 +111,7 @@ void RemapController::adopt(std::shared_ptr<const ScanSource> source, bool live,
   source_ = std::move(source);
   live_ = live;
   cellSize_ = cellSize;
+  previewMsPerReading_ = 0.0;  // another log or cell size: its previews' cost is not known yet
 }
 
 void RemapController::setSource(std::shared_ptr<const ScanSource> source, double cellSize) {
@@ -158,29 +160,64 @@ void RemapController::setPreview(int factor, double aboveMs) {
   previewAboveMs_ = aboveMs;
 }
 
+void RemapController::setPreviewBudget(double ms) {
+  previewBudgetMs_ = std::max(0.0, ms);
+}
+
+int RemapController::previewStride() const {
+  if (previewBudgetMs_ <= 0.0 || !source_) return 1;
+  const std::shared_ptr<const Dataset> data = source_->view();
+  if (!data) return 1;
+  const double readings = static_cast<double>(data->readingCount());
+  if (readings <= 0.0) return 1;
+  // Before any preview: cells `factor` times larger cost about 60 % of the full map on the bundled
+  // logs at a factor of 2 (raschke-multi at 5 cm: 25 against 39 ms).
+  const double perReading =
+      previewMsPerReading_ > 0.0 ? previewMsPerReading_ : 0.6 * lastFullMs_ / readings;
+  const double stride = std::ceil(readings * perReading / previewBudgetMs_);
+  return static_cast<int>(std::clamp(stride, 1.0, double(kMaxPreviewStride)));
+}
+
 void RemapController::startPreview(quint64 generation,
                                    const std::shared_ptr<std::atomic<bool>>& cancel) {
   struct Preview {
     std::shared_ptr<const OccupancyMap> map;
     double ms = 0.0;
+    std::size_t readings = 0;
   };
+  const int stride = previewStride();
   jobs_.run<Preview>(
       cancel,
       [data = source_->view(), settings = settings_, cellSize = cellSize_ * previewFactor_,
-       until = until_](const std::atomic<bool>* stop) {
+       until = until_, stride](const std::atomic<bool>* stop) {
         Preview p;
         const auto t0 = std::chrono::steady_clock::now();
+        // The same ground as the full map (the log's fitting grid), so the view keeps its place.
         const auto mapper = mapperFor(*data, settings, cellSize);
-        if (mapper->mapDataset(*data, until, stop)) {
+        bool done = false;
+        if (stride <= 1) {
+          done = mapper->mapDataset(*data, until, stop);
+        } else {
+          Dataset thin;
+          thin.ring = data->ring;
+          thin.scans.reserve(data->scans.size() / std::size_t(stride) + 1);
+          for (std::size_t i = 0; i < data->scans.size(); i += std::size_t(stride))
+            thin.scans.push_back(data->scans[i]);
+          done = mapper->mapDataset(thin, until, stop);
+        }
+        if (done) {
           p.map = std::make_shared<const OccupancyMap>(mapper->snapshot());
           p.ms = msSince(t0);
+          p.readings = mapper->readingsIntegrated();
         }
         return p;
       },
-      [this, generation](JobOutcome<Preview> outcome) {
-        // An error is the full run's to report.
-        if (outcome.value && outcome.value->map && generation == generation_)
-          emit previewed(outcome.value->map, outcome.value->ms, generation);
+      [this, generation, stride](JobOutcome<Preview> outcome) {
+        if (!outcome.value || !outcome.value->map) return;  // an error is the full run's to report
+        if (outcome.value->readings > 0)
+          previewMsPerReading_ = outcome.value->ms / double(outcome.value->readings);
+        if (generation == generation_)
+          emit previewed(outcome.value->map, outcome.value->ms, generation, stride);
       });
 }
 

@@ -19,9 +19,12 @@
 // of the time backwards) re-maps every scan received so far, from the grid's present limits.
 //
 // Optionally (setPreview), a change of settings whose last full re-map was slow is first mapped on
-// cells `factor` times larger, a fraction of the work, and delivered as previewed(); the full map
-// follows as mapped(). A dragged slider then moves the picture at once on any log; the full map
-// arrives when the slider rests long enough for it. Previews are never cancelled() or failed().
+// cells `factor` times larger and, with a time budget (setPreviewBudget), from one scan in
+// `stride` only, the stride chosen from what the last preview cost so that a preview takes about
+// the budget; it is delivered as previewed(); the full map follows as mapped(). A dragged slider
+// then moves the picture within a frame or two on any log; the full map arrives when the slider
+// rests long enough for it (a newer change cancels both). Previews are never cancelled() or
+// failed().
 //
 // The forward model (forward/forward_em.h) is a batch method: each change runs EM over the whole
 // loaded log, with emProgress() after each iteration, and no preview; a live link is refused.
@@ -82,6 +85,13 @@ class RemapController : public QObject {
   // log took more than `aboveMs`; factor 1 (the default) turns previews off.
   void setPreview(int factor, double aboveMs);
   int previewFactor() const { return previewFactor_; }
+  // A preview maps one scan in `stride` so that it takes about `ms` (0, the default: every scan),
+  // the stride estimated from the last preview's cost per reading (before the first, from the last
+  // full re-map's), from 1 to kMaxPreviewStride.
+  void setPreviewBudget(double ms);
+  static constexpr int kMaxPreviewStride = 64;
+  // The stride the next preview would take.
+  int previewStride() const;
 
  public slots:
   // Each of these starts a new run and cancels the stale one. Returns nothing; the outcome arrives
@@ -108,8 +118,10 @@ class RemapController : public QObject {
   // A run was superseded; `interrupted` says it stopped before the end of the log.
   void cancelled(quint64 generation, bool interrupted);
   void failed(const QString& message, quint64 generation);
-  // A quick map of the newest settings on coarser cells, ahead of its mapped() (setPreview).
-  void previewed(std::shared_ptr<const sg::OccupancyMap> map, double elapsedMs, quint64 generation);
+  // A quick map of the newest settings on coarser cells from one scan in `scanStride`, ahead of
+  // its mapped() (setPreview).
+  void previewed(std::shared_ptr<const sg::OccupancyMap> map, double elapsedMs, quint64 generation,
+                 int scanStride);
   void busyChanged(bool busy);
   // The forward model's EM (docs/forward-model.md) finished an iteration of this generation's run:
   // `iteration` of at most `cap`, and the log-likelihood of the map so far. A slider change starts
@@ -141,7 +153,9 @@ class RemapController : public QObject {
   std::shared_ptr<std::atomic<bool>> cancelRunning_;
   int previewFactor_ = 1;
   double previewAboveMs_ = 0.0;
-  double lastFullMs_ = 0.0;  // the last full re-map from scratch (not a continuation)
+  double previewBudgetMs_ = 0.0;
+  double previewMsPerReading_ = 0.0;  // what the last preview cost (0: none yet)
+  double lastFullMs_ = 0.0;           // the last full re-map from scratch (not a continuation)
   std::shared_ptr<const OccupancyMap> lastMap_;
   // Touched only by jobs, and jobs run one at a time.
   std::shared_ptr<WarmMapper> warm_;

@@ -123,13 +123,14 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
             // The panel shows what a re-map of the log costs, not a continuation while playing.
             if (!incremental) panel_->showRemapTime(ms);
           });
-  // While a slow log re-maps, a change first shows a map on cells twice as large (a quarter of the
-  // work); the full map replaces it (RemapController::setPreview).
+  // While a slow log re-maps, a change first shows a preview: cells twice as large, one scan in
+  // N; the full map replaces it (RemapController::setPreview).
   remap_->setPreview(kPreviewFactor, kPreviewAboveMs);
+  remap_->setPreviewBudget(kPreviewBudgetMs);
   connect(remap_, &ui::RemapController::previewed, this,
-          [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64) {
+          [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64, int stride) {
             view_->setMap(std::move(map));
-            status_->previewed(document_->cellSize() * kPreviewFactor * 100.0, ms);
+            status_->previewed(document_->cellSize() * kPreviewFactor * 100.0, stride, ms);
           });
   connect(remap_, &ui::RemapController::failed, this, [this](const QString& message, quint64) {
     status_->mappingFailed();

@@ -257,12 +257,14 @@ class MainWindow : public QMainWindow {
   static constexpr int kLayoutVersion = 1;
   // The Cell Inspector's height when it is shown in the row under the grid.
   static constexpr int kInspectorHeight = 250;
+  // A settings change on a log whose full re-map takes longer than half a frame is first
+  // previewed on cells twice as large, from one scan in N with N chosen so that the preview takes
+  // about kPreviewBudgetMs (RemapController::setPreviewBudget): the dragged slider's picture
+  // follows within a frame on any log, and the full map, delayed by about the budget, replaces it
+  // when the slider rests (bench_remap_latency measures both).
   static constexpr int kPreviewFactor = 2;
-  // A preview costs about 60 % of a full re-map on a log of a few thousand readings (the readings'
-  // own cost stays; raschke-multi at 5 cm: 25 against 39 ms), and it runs first: on a log that
-  // re-maps in tens of ms it showed a change some 15 ms sooner and the full map 25 ms later
-  // (bench_remap_latency). It pays where the full map takes long enough to be waited for.
-  static constexpr double kPreviewAboveMs = 80.0;
+  static constexpr double kPreviewBudgetMs = 6.0;
+  static constexpr double kPreviewAboveMs = 8.0;
   QStringList recent_;
   // The menus' actions (main_window_menus.cpp), held together as Qt Designer's Ui classes hold
   // theirs.

@@ -20,8 +20,9 @@ StatusReport::StatusReport(QStatusBar* bar)
       stopEm_(new QPushButton(tr("Stop EM"), bar)) {
   remap_->setObjectName(QStringLiteral("remapStatus"));
   // Wide enough for its longest text, so a new time does not lay the status bar out again.
-  remap_->setMinimumWidth(
-      remap_->fontMetrics().horizontalAdvance(tr("preview at 99.9 cm (9999 ms)…")) + 8);
+  remap_->setMinimumWidth(remap_->fontMetrics().horizontalAdvance(
+                              tr("preview: 99.9 cm cells, 1 scan in 64 (9999 ms)…")) +
+                          8);
   bar->addWidget(hint_, 1);
   bar->addPermanentWidget(remap_);
   loadBar_->setRange(0, 100);
@@ -78,8 +79,10 @@ void StatusReport::mapped(double ms) {
   remap_->setText(tr("re-mapped in %1 ms").arg(ms, 0, 'f', 1));
 }
 
-void StatusReport::previewed(double cellCm, double ms) {
-  remap_->setText(tr("preview at %1 cm (%2 ms)…").arg(cellCm, 0, 'g', 3).arg(ms, 0, 'f', 0));
+void StatusReport::previewed(double cellCm, int scanStride, double ms) {
+  const QString cells = tr("%1 cm cells").arg(cellCm, 0, 'g', 3);
+  const QString scans = scanStride > 1 ? tr(", 1 scan in %1").arg(scanStride) : QString();
+  remap_->setText(tr("preview: %1%2 (%3 ms)…").arg(cells, scans).arg(ms, 0, 'f', 0));
 }
 
 void StatusReport::mappingFailed() {

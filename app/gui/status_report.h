@@ -22,7 +22,7 @@ class StatusReport : public QObject {
   void setHint(const QString& text);
   void mapping();
   void mapped(double ms);
-  void previewed(double cellCm, double ms);
+  void previewed(double cellCm, int scanStride, double ms);
   void mappingFailed();
   // The forward model's EM (docs/forward-model.md): iteration `iteration` of at most `cap` done,
   // shown as a bar with a Stop EM button until emEnded().

@@ -144,6 +144,46 @@ class TestRemapController : public QObject {
     QCOMPARE(previewed.count(), 1);
   }
 
+  void previewThinsTheLogToItsBudget() {
+    // With a time budget, a preview maps one scan in `stride` (RemapController::previewStride):
+    // with no budget every scan; with a budget far below any map's cost the largest stride, 64;
+    // with a budget of an hour, 1. The preview is the batch map, at 10 cm, of the log with only
+    // scans 0, 64, 128, ... (on the whole log's fitting grid: the view keeps its ground), and the
+    // full map that follows is the whole log's at 5 cm.
+    const auto data = roomLog();
+    RemapController remap;
+    remap.setPreview(2, 0.0);
+    QCOMPARE(remap.previewStride(), 1);  // no budget
+    QSignalSpy previewed(&remap, &RemapController::previewed);
+    QSignalSpy mapped(&remap, &RemapController::mapped);
+    remap.start(data, 0.05, settingsFor("hpf", "bayes"), std::numeric_limits<double>::infinity());
+    QVERIFY(mapped.wait(60000));
+    remap.setPreviewBudget(1e-9);
+    QCOMPARE(remap.previewStride(), RemapController::kMaxPreviewStride);
+    remap.setPreviewBudget(3.6e6);
+    QCOMPARE(remap.previewStride(), 1);
+    remap.setPreviewBudget(1e-9);
+
+    const MapperSettings second = settingsFor("parameterized", "bayes");
+    remap.setSettings(second);
+    QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), 2, 60000);
+    QCOMPARE(previewed.count(), 1);
+    QCOMPARE(previewed.at(0).at(3).toInt(), 64);
+    Dataset thin;
+    thin.ring = data->ring;
+    for (std::size_t i = 0; i < data->scans.size(); i += 64) thin.scans.push_back(data->scans[i]);
+    QVERIFY(thin.scans.size() >= 2 && thin.scans.size() < data->scans.size() / 32);
+    Mapper coarse(data->ring, data->fittingGrid(second.pose, 0.1), second);
+    coarse.mapDataset(thin);
+    const auto preview = previewed.at(0).at(0).value<std::shared_ptr<const OccupancyMap>>();
+    QVERIFY(preview->spec == coarse.grid());
+    QVERIFY(preview->level == coarse.snapshot().level);
+    const double end = std::numeric_limits<double>::infinity();
+    QVERIFY(preview->level != batchMap(*data, second, end, 0.1).level);  // thinned, not whole
+    const auto full = mapped.at(1).at(0).value<std::shared_ptr<const OccupancyMap>>();
+    QVERIFY(full->level == batchMap(*data, second, end, 0.05).level);
+  }
+
   void previewOnlyForSlowLogs() {
     // The window previews only when the last full re-map took longer than `aboveMs`: with an
     // hour's threshold, never.
