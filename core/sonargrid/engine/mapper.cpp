@@ -27,7 +27,9 @@ Mapper::Mapper(const SonarRing& ring, const GridSpec& grid, const MapperSettings
     : ring_(ring), settings_(settings) {
   model_ = makeSensorModel(settings.model);
   if (!model_) throw MapperError("unknown sensor model '" + settings.model + "'");
-  rule_ = makeUpdateRule(settings.rule);
+  rule_ =
+      makeUpdateRule(settings.rule, hasFastCells(settings.model, settings.rule) ? settings.precision
+                                                                                : Precision::Exact);
   if (!rule_) throw MapperError("unknown update rule '" + settings.rule + "'");
   const Compatibility c = compatibility(settings.model, settings.rule);
   if (!c.allowed) {

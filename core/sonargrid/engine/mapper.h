@@ -57,8 +57,12 @@ struct MapperSettings {
   std::string rule = "addition";
   ParameterSet parameters;  // the model's and the rule's, by name; see defaultParameters()
   PoseSource pose = PoseSource::Odometry;
+  // The engine's arithmetic (update_rule.h): the exact engine, the oracle every rule was written
+  // in, by default.
+  Precision precision = Precision::Exact;
 
-  // The same model, rule, parameter values and pose source: the same map of the same log.
+  // The same model, rule, parameter values, pose source and precision: the same map of the same
+  // log.
   bool operator==(const MapperSettings&) const = default;
 };
 

@@ -275,9 +275,29 @@ class RuleOnCells : public UpdateRule {
   }
 };
 
+// Which arithmetic a rule's cells use (docs/models.md, "Exact and fast engines"). Exact is the
+// double arithmetic every rule was written and tested in, the oracle; Fast may keep a cell in
+// another form (a cone model's Bayes cells: four bytes, rule_classes.h, BayesFloatCell) within
+// the tolerance that tests/core/tst_precision.cpp holds it to against Exact. Both are
+// deterministic: the same bits at any thread count and in batch, incremental and live mapping.
+enum class Precision { Exact, Fast };
+// "exact" or "fast"; precisionFromName() throws std::invalid_argument for another name.
+const char* precisionName(Precision precision);
+Precision precisionFromName(const std::string& name);
+// Whether `model` × `rule` has cells of its own under Fast: a cone model with the Bayes family.
+// Every other pair keeps its exact cells under both. HIMM's axis model gives a few discrete
+// values, and its cells sit on the 16 levels' boundaries (p_hit = 0.7 is the boundary of levels 10
+// and 11), where the exact cell's side is decided by the last bit of a double, which a
+// single-precision log-odds cannot follow; it keeps exact cells (docs/models.md).
+bool hasFastCells(const std::string& model, const std::string& rule);
+
 std::vector<std::string> updateRuleNames();
-std::unique_ptr<UpdateRule> makeUpdateRule(const std::string& name);  // nullptr when unknown
-const RuleInfo& updateRuleInfo(const std::string& name);              // throws when unknown
+// nullptr when unknown.
+// With Precision::Fast, the fast cells of `name` where it has any (hasFastCells(): a caller
+// mapping with a non-cone model passes Exact).
+std::unique_ptr<UpdateRule> makeUpdateRule(const std::string& name,
+                                           Precision precision = Precision::Exact);
+const RuleInfo& updateRuleInfo(const std::string& name);  // throws when unknown
 
 // Whether a model and a rule may be combined, and why not (docs/models.md has the table).
 struct Compatibility {

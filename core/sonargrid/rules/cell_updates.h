@@ -70,6 +70,14 @@ template <class V>
   return den > 0.0 ? floored : m;
 }
 
+// FastBayesRule's step (rule_classes.h, BayesFloatCell): the exact rule's on the cell's p, rounded
+// once to the cell.
+[[gnu::always_inline]] inline void floatBayes(double p, BayesFloatCell& cell) {
+  BayesCell m{FastBayesRule::probabilityOf(cell)};
+  bayes(p, m);
+  cell = FastBayesRule::cellOf(m.p);
+}
+
 // The log update's product (LogRule), held within [kLogLow, kLogHigh].
 inline constexpr double kLogLow = 1e-300, kLogHigh = 1e300;
 [[gnu::always_inline]] inline void logProduct(float empty, float occupied, LogCell& cell) {

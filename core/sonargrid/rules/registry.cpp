@@ -22,9 +22,27 @@ std::vector<std::string> updateRuleNames() {
   return {"addition", "bayes", "bayes-recursive", "log", "logodds", "himm", "dempster-shafer"};
 }
 
-std::unique_ptr<UpdateRule> makeUpdateRule(const std::string& name) {
+const char* precisionName(Precision precision) {
+  return precision == Precision::Exact ? "exact" : "fast";
+}
+
+Precision precisionFromName(const std::string& name) {
+  if (name == "exact") return Precision::Exact;
+  if (name == "fast") return Precision::Fast;
+  throw std::invalid_argument("unknown precision '" + name + "' (exact or fast)");
+}
+
+bool hasFastCells(const std::string& model, const std::string& rule) {
+  return model != "himm" && (rule == "bayes" || rule == "bayes-recursive");
+}
+
+std::unique_ptr<UpdateRule> makeUpdateRule(const std::string& name, Precision precision) {
   std::unique_ptr<UpdateRule> r;
-  if (name == "addition")
+  if (precision == Precision::Fast && name == "bayes")
+    r = std::make_unique<FastBayesRule>(BayesRule::Input::Evidence);
+  else if (precision == Precision::Fast && name == "bayes-recursive")
+    r = std::make_unique<FastBayesRule>(BayesRule::Input::Likelihood);
+  else if (name == "addition")
     r = std::make_unique<AdditionRule>();
   else if (name == "bayes")
     r = std::make_unique<BayesRule>(BayesRule::Input::Evidence);

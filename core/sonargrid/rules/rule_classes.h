@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -76,6 +77,53 @@ class BayesRule final : public RuleOnCells<BayesRule, BayesCell> {
  private:
   Input input_;
   double prior_ = 0.5;
+};
+
+// Bayes' rule under Precision::Fast (docs/models.md, "Exact and fast engines"): the cell keeps its
+// p in four bytes, as the smaller of p and 1 − p, so that it holds p's distance from 0 or from 1
+// however small (a float p would round to 1 after eight readings of 0.9 and stay there), in the
+// upper half of that double's bits: its sign, its whole exponent (down to the exact cell's floor,
+// 2⁻⁹⁶⁰) and 20 bits of its mantissa, rounded to nearest. A sign bit clear stands for p = v, set
+// for p = 1 + v = 1 − |v| (−0: certain). A reading widens the cell to the double p, takes the exact
+// rule's step (cell_updates.h, bayes), and rounds the new p once; near 1, where the exact cell's p
+// is a whole number of 2⁻⁵³ below 1, which the 20 bits hold, it becomes certain where the exact
+// cell does.
+struct BayesFloatCell {
+  std::uint32_t bits;  // the upper half of the double v
+};
+class FastBayesRule final : public RuleOnCells<FastBayesRule, BayesFloatCell> {
+ public:
+  explicit FastBayesRule(BayesRule::Input input) : input_(input) {}
+  const RuleInfo& info() const override {
+    return input_ == BayesRule::Input::Evidence ? BayesRule::evidenceInfo()
+                                                : BayesRule::likelihoodInfo();
+  }
+  void configure(const ParameterSet& params) override;
+  CellLayout layout() const override { return CellLayout::of(prior_); }
+  void apply(const Footprint& footprint, Grid& grid) const override;
+  void applyRuns(const EvidenceRuns& runs, Grid& grid, EvidenceRuns* deferred) const override;
+  bool applyUniform(const CellEvidence& evidence, std::span<const std::uint32_t> cells,
+                    Grid& grid) const override;
+
+  // The p a cell stands for, and the cell of a p (rounded to nearest). A cell is never +0 (p is
+  // at least the exact floor), so v ≤ 0 is its sign bit.
+  static double probabilityOf(BayesFloatCell c) {
+    const double v = std::bit_cast<double>(static_cast<std::uint64_t>(c.bits) << 32);
+    return v <= 0.0 ? 1.0 + v : v;
+  }
+  static BayesFloatCell cellOf(double p) {
+    const double v = p > 0.5 ? -(1.0 - p) : p;
+    return {static_cast<std::uint32_t>((std::bit_cast<std::uint64_t>(v) + 0x80000000u) >> 32)};
+  }
+  double occupancyOf(const BayesFloatCell& c) const { return probabilityOf(c); }
+  double nativeOf(const BayesFloatCell& c) const { return probabilityOf(c); }
+  bool filledOf(const BayesFloatCell& c) const { return probabilityOf(c) > 0.5; }
+
+ private:
+  // The reading's p at one cell, as BayesRule computes it.
+  double readingProbability(const CellEvidence& c) const;
+  BayesRule::Input input_;
+  BayesFloatCell prior_ = cellOf(0.5);
 };
 
 // The log method of paper 001 §3.3 as a sum of logs, cut to [cut_min, cut_max].

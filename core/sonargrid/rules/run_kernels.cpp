@@ -109,6 +109,21 @@ template <class V>
 }
 // Bayes with the probability p: cellrule::bayesLanes (cell_updates.h).
 using cellrule::bayesLanes;
+// FastBayesRule's cells (the upper halves of doubles v: FastBayesRule::probabilityOf, cellOf) as
+// their p, and four p rounded to their cells.
+using Bits4 = std::uint64_t __attribute__((vector_size(32)));
+using Halves4 = std::uint32_t __attribute__((vector_size(16)));
+[[gnu::always_inline]] inline Doubles unpackHalves(const void* p) {
+  Halves4 h;
+  std::memcpy(&h, p, sizeof h);
+  const Doubles v = (Doubles)(__builtin_convertvector(h, Bits4) << 32);
+  return v <= 0.0 ? 1.0 + v : v;
+}
+[[gnu::always_inline]] inline void packHalves(void* p, Doubles m) {
+  const Doubles v = m > 0.5 ? -(1.0 - m) : m;
+  const Halves4 h = __builtin_convertvector(((Bits4)v + 0x80000000u) >> 32, Halves4);
+  std::memcpy(p, &h, sizeof h);
+}
 // Paper 001's evidence as a probability (cellrule::bayesEvidence).
 template <class V>
 [[gnu::always_inline]] inline V bayesEvidenceLanes(V empty, V occupied) {
@@ -269,6 +284,7 @@ template <class Cell, class Lanes>
 }
 
 static_assert(sizeof(EmptyEvidence) == sizeof(float) && sizeof(OccupiedEvidence) == sizeof(float));
+static_assert(sizeof(BayesFloatCell) == sizeof(std::uint32_t));
 static_assert(sizeof(BayesCell) == sizeof(double) && sizeof(LogCell) == sizeof(double));
 static_assert(sizeof(LogOddsCell) == sizeof(double));
 static_assert(sizeof(DempsterShaferCell) == 2 * sizeof(float) &&
@@ -310,6 +326,19 @@ SG_MASKED_INLINE inline Doubles8 widen8(__mmask8 mask, const void* p) {
 }
 SG_MASKED_INLINE inline void narrow8(__mmask8 mask, void* p, Doubles8 v) {
   _mm256_mask_storeu_ps(p, mask, reinterpret_cast<__m256>(__builtin_convertvector(v, Floats8)));
+}
+// unpackHalves() and packHalves() of eight cells (masked forms throughout, as in widen8()).
+SG_MASKED_INLINE inline Doubles8 unpackHalves8(__mmask8 mask, const void* p) {
+  const Doubles8 v = reinterpret_cast<Doubles8>(_mm512_maskz_slli_epi64(
+      mask, _mm512_maskz_cvtepu32_epi64(mask, _mm256_maskz_loadu_epi32(mask, p)), 32));
+  return v <= 0.0 ? 1.0 + v : v;
+}
+SG_MASKED_INLINE inline void packHalves8(__mmask8 mask, void* p, Doubles8 m) {
+  const Doubles8 v = m > 0.5 ? -(1.0 - m) : m;
+  const __m512i rounded =
+      _mm512_maskz_add_epi64(mask, reinterpret_cast<__m512i>(v), _mm512_set1_epi64(0x80000000));
+  const __m512i high = _mm512_maskz_srli_epi64(mask, rounded, 32);
+  _mm256_mask_storeu_epi32(p, mask, _mm512_maskz_cvtepi64_epi32(mask, high));
 }
 
 // The mask of the first min(left, 8) lanes: a group of eight with `left` values from its start to
@@ -400,6 +429,26 @@ __attribute__((SG_MASKED_TARGET)) void bayesMasked(const EvidenceRuns& runs, Bay
                   BayesCell* cells) SG_MASKED_INLINE {
                  const Doubles8 p = bayesEvidenceLanes(widen8(m, empty), widen8(m, occupied));
                  store8(m, cells, bayesLanes(load8(m, cells), p));
+               });
+  }
+}
+
+__attribute__((SG_MASKED_TARGET)) void floatBayesMasked(const EvidenceRuns& runs,
+                                                        BayesFloatCell* plane, bool likelihood) {
+  if (likelihood) {
+    eachMasked(runs, plane,
+               [](__mmask8 m, const float*, const float*, const float* probability,
+                  BayesFloatCell* cells) SG_MASKED_INLINE {
+                 const Doubles8 p = unpackHalves8(m, cells);
+                 packHalves8(m, cells, bayesLanes(p, widen8(m, probability)));
+               });
+  } else {
+    eachMasked(runs, plane,
+               [](__mmask8 m, const float* empty, const float* occupied, const float*,
+                  BayesFloatCell* cells) SG_MASKED_INLINE {
+                 const Doubles8 e = bayesEvidenceLanes(widen8(m, empty), widen8(m, occupied));
+                 const Doubles8 p = unpackHalves8(m, cells);
+                 packHalves8(m, cells, bayesLanes(p, e));
                });
   }
 }
@@ -603,6 +652,25 @@ SG_RUN_CLONES void dempsterShafer(const EvidenceRuns& runs, DempsterShaferCell* 
                });
 }
 
+SG_RUN_CLONES void floatBayes(const EvidenceRuns& runs, BayesFloatCell* plane, bool likelihood) {
+  if (likelihood) {
+    eachGroup(runs, plane,
+              [&](const float*, const float*, const float* probability, BayesFloatCell* cells)
+                  SG_INLINE_LAMBDA {
+                    const Doubles p = unpackHalves(cells);
+                    packHalves(cells, bayesLanes(p, widen(probability)));
+                  });
+  } else {
+    eachGroup(runs, plane,
+              [&](const float* empty, const float* occupied, const float*, BayesFloatCell* cells)
+                  SG_INLINE_LAMBDA {
+                    const Doubles e = bayesEvidenceLanes(widen(empty), widen(occupied));
+                    const Doubles p = unpackHalves(cells);
+                    packHalves(cells, bayesLanes(p, e));
+                  });
+  }
+}
+
 }  // namespace plain
 
 // The kernels: masked where the CPU has AVX-512, else the four lanes.
@@ -632,6 +700,11 @@ void additionOccupied(const EvidenceRuns& runs, std::size_t firstRun, std::size_
 void bayes(const EvidenceRuns& runs, BayesCell* plane, bool likelihood) {
   SG_RUN_MASKED(bayesMasked(runs, plane, likelihood));
   plain::bayes(runs, plane, likelihood);
+}
+
+void floatBayes(const EvidenceRuns& runs, BayesFloatCell* plane, bool likelihood) {
+  SG_RUN_MASKED(floatBayesMasked(runs, plane, likelihood));
+  plain::floatBayes(runs, plane, likelihood);
 }
 
 void logProduct(const EvidenceRuns& runs, LogCell* plane) {

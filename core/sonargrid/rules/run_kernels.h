@@ -28,6 +28,9 @@ void additionOccupied(const EvidenceRuns& runs, std::size_t firstRun, std::size_
 // Every cell of the runs in `cells` (the grid's plane):
 // BayesRule::apply, with p = 0.5 + (pO − pE)/2 (`likelihood` false) or the model's probability.
 void bayes(const EvidenceRuns& runs, BayesCell* cells, bool likelihood);
+// FastBayesRule::apply: BayesRule's lanes on the float cells widened to their p and rounded back
+// (cellrule::floatBayes).
+void floatBayes(const EvidenceRuns& runs, BayesFloatCell* cells, bool likelihood);
 // LogRule::apply.
 void logProduct(const EvidenceRuns& runs, LogCell* cells);
 // LogOddsRule::apply, with its configured 1/prior odds and clamp.
