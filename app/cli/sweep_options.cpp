@@ -29,8 +29,13 @@ SweepOptions parseSweepOptions(Arguments& args, const std::vector<std::string>& 
     for (const std::string& v : probe.values("--sonar-topic"))
       o.logFlags.emplace_back("--sonar-topic", v);
     if (probe.flag("--lenient")) o.logFlags.emplace_back("--lenient", "yes");
+    // A sweep's batched evaluation maps every set with the exact engine (docs/models.md, "Exact
+    // and fast engines"): its rankings are the oracle's.
+    if (probe.value("--precision").value_or("exact") != "exact")
+      throw UsageError("a sweep maps every set with the exact engine: leave out --precision");
   }
   o.map = parseMapOptions(args);
+  o.map.settings.precision = Precision::Exact;
   if (o.map.until != std::numeric_limits<double>::infinity())
     throw UsageError("--until does not go with a sweep: every set maps the whole log");
   o.secondLog = args.value("--second-log");

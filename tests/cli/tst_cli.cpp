@@ -433,6 +433,21 @@ void TstCli::mapPairs() {
   if (!cell.isEmpty()) args << "--cell" << cell;
   QJsonObject o;
   mapJson(args, o);
+  // --precision exact is the default: the same JSON (elapsed_ms aside); fast maps the same
+  // grid and readings (its levels: tst_precision, docs/models.md, "Exact and fast engines").
+  for (const char* precision : {"exact", "fast"}) {
+    QJsonObject with;
+    mapJson(args + QStringList{"--precision", precision}, with);
+    if (QTest::currentTestFailed()) return;
+    QCOMPARE(with.value("grid"), o.value("grid"));
+    QCOMPARE(with.value("readings"), o.value("readings"));
+    if (QString(precision) == "exact") {
+      with.remove("elapsed_ms");
+      QJsonObject without = o;
+      without.remove("elapsed_ms");
+      QCOMPARE(with, without);
+    }
+  }
   if (QTest::currentTestFailed()) return;
   checkMapObject(o, model, rule, cell.isEmpty() ? 0.05 : cell.toDouble());
   if (QTest::currentTestFailed()) return;
@@ -842,6 +857,13 @@ void TstCli::errors_data() {
       << "--model forward-em learns its map by EM and takes no update rule: leave out --rule "
          "'bayes'"
       << true;
+  QTest::newRow("map: an unknown --precision")
+      << (map + QStringList{"--precision", "double"}) << 2
+      << "--precision takes fast or exact, got 'double'" << true;
+  QTest::newRow("sweep: --precision fast")
+      << QStringList{"sweep", "--log",    log,     "--model",     "hpf", "--rule",
+                     "bayes", "--metric", "vsdns", "--precision", "fast"}
+      << 2 << "a sweep maps every set with the exact engine: leave out --precision" << true;
   QTest::newRow("map: --iterations with an inverse model")
       << (map + QStringList{"--iterations", "5"}) << 2
       << "--iterations caps EM's iterations: it goes with --model forward-em" << true;

@@ -92,11 +92,14 @@ void TstCliBench::initTestCase() {
 }
 
 void TstCliBench::quickJson() {
-  // Exactly the keys of the contract (issue 15).
+  // Exactly the keys of the contract (issue 15; the fast engine's three, docs/cli.md).
   const QStringList keys = {"cores",
                             "office_readings",
                             "office_remap_ms",
                             "workload_remap_ms",
+                            "office_remap_ms_fast",
+                            "workload_remap_ms_fast",
+                            "fast_deviation_office",
                             "load_1m_readings_s",
                             "bytes_per_cell"};
   QStringList got = bench_.keys();
@@ -123,6 +126,31 @@ void TstCliBench::quickJson() {
       QVERIFY2(positiveFinite(it.value()), qPrintable(QString(workload) + " " + it.key()));
   }
   QVERIFY(positiveFinite(bench_.value("load_1m_readings_s")));
+  // The fast engine: timed, and its deviation from the exact map given, for the pairs where it
+  // has cells of its own (a cone model with the Bayes family: 4 × 2), within the accuracy
+  // contract (docs/models.md: at most 0.1 % of observed cells, by at most one level).
+  QSet<QString> fastPairs;
+  for (const char* model : {"hpf", "konolige", "murphy", "parameterized"})
+    for (const char* rule : {"bayes", "bayes-recursive"})
+      fastPairs.insert(QString(model) + "/" + rule);
+  for (const char* key : {"office_remap_ms_fast", "workload_remap_ms_fast"}) {
+    const QJsonObject times = bench_.value(key).toObject();
+    const QStringList timed = times.keys();
+    QCOMPARE(QSet<QString>(timed.begin(), timed.end()), fastPairs);
+    for (auto it = times.begin(); it != times.end(); ++it)
+      QVERIFY2(positiveFinite(it.value()), qPrintable(QString(key) + " " + it.key()));
+  }
+  const QJsonObject deviation = bench_.value("fast_deviation_office").toObject();
+  const QStringList measured = deviation.keys();
+  QCOMPARE(QSet<QString>(measured.begin(), measured.end()), fastPairs);
+  for (auto it = deviation.begin(); it != deviation.end(); ++it) {
+    const QJsonObject d = it.value().toObject();
+    QVERIFY2(d.value("levels_differ_pct").toDouble(-1) >= 0.0 &&
+                 d.value("levels_differ_pct").toDouble(-1) <= 0.1,
+             qPrintable(it.key()));
+    QVERIFY2(d.value("max_level_step").toInt(-1) >= 0 && d.value("max_level_step").toInt(-1) <= 1,
+             qPrintable(it.key()));
+  }
 }
 
 void TstCliBench::bytesPerCell_data() {
@@ -140,13 +168,16 @@ void TstCliBench::bytesPerCell_data() {
   QTest::newRow("himm") << "himm" << 1 + 4;        // CV, a byte
   // The two smaller of the three masses, floats (DempsterShaferCell).
   QTest::newRow("dempster-shafer") << "dempster-shafer" << 8 + 4;
+  // The fast engine's Bayes cells: four bytes (rule_classes.h, BayesFloatCell).
+  QTest::newRow("bayes/fast") << "bayes/fast" << 4 + 4;
+  QTest::newRow("bayes-recursive/fast") << "bayes-recursive/fast" << 4 + 4;
 }
 
 void TstCliBench::bytesPerCell() {
   QFETCH(QString, rule);
   QFETCH(int, bytes);
   const QJsonObject perRule = bench_.value("bytes_per_cell").toObject();
-  QCOMPARE(perRule.size(), 7);
+  QCOMPARE(perRule.size(), 9);
   QCOMPARE(perRule.value(rule).toInt(-1), bytes);
 }
 
