@@ -125,6 +125,7 @@ void RemapController::start(std::shared_ptr<const ScanSource> source, double cel
   const bool live = source && !source->complete();
   adopt(std::move(source), live, cellSize);
   settings_ = settings;
+  settings_.precision = precision_;
   haveSettings_ = true;
   until_ = until;
   remap();
@@ -134,6 +135,7 @@ void RemapController::startLive(std::shared_ptr<const ScanSource> source, double
                                 const MapperSettings& settings, double until) {
   adopt(std::move(source), true, cellSize);
   settings_ = settings;
+  settings_.precision = precision_;
   haveSettings_ = true;
   until_ = until;
   remap();
@@ -149,8 +151,16 @@ void RemapController::start(std::shared_ptr<const Dataset> data, double cellSize
         until);
 }
 
+void RemapController::setPrecision(Precision precision) {
+  if (precision == precision_) return;
+  precision_ = precision;
+  settings_.precision = precision;
+  remap();
+}
+
 void RemapController::setSettings(const MapperSettings& settings) {
   settings_ = settings;
+  settings_.precision = precision_;
   haveSettings_ = true;
   run(previewFactor_ > 1 && lastFullMs_ > previewAboveMs_);
 }

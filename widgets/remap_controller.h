@@ -85,6 +85,10 @@ class RemapController : public QObject {
   // log took more than `aboveMs`; factor 1 (the default) turns previews off.
   void setPreview(int factor, double aboveMs);
   int previewFactor() const { return previewFactor_; }
+  // The engine every run maps with, whatever the settings given say (MapperSettings::precision):
+  // a change re-maps the log.
+  void setPrecision(Precision precision);
+  Precision precision() const { return precision_; }
   // A preview maps one scan in `stride` so that it takes about `ms` (0, the default: every scan),
   // the stride estimated from the last preview's cost per reading (before the first, from the last
   // full re-map's), from 1 to kMaxPreviewStride.
@@ -146,6 +150,7 @@ class RemapController : public QObject {
   double cellSize_ = 0.05;
   MapperSettings settings_;
   bool haveSettings_ = false;
+  Precision precision_ = Precision::Exact;
   double until_ = std::numeric_limits<double>::infinity();
   quint64 generation_ = 0;
   quint64 lastRemapGeneration_ = 0;         // the newest request that was not an append

@@ -25,6 +25,7 @@
 #include "main_window_sweep.h"
 #include "map_dock.h"
 #include "parameter_panel.h"
+#include "preferences.h"
 #include "reference_editing.h"
 #include "remap_controller.h"
 #include "robot/robot_dock.h"
@@ -127,6 +128,7 @@ MainWindow::MainWindow(ui::GridView::Backend backend, QWidget* parent)
   // N; the full map replaces it (RemapController::setPreview).
   remap_->setPreview(kPreviewFactor, kPreviewAboveMs);
   remap_->setPreviewBudget(kPreviewBudgetMs);
+  applyEngine();
   connect(remap_, &ui::RemapController::previewed, this,
           [this](std::shared_ptr<const OccupancyMap> map, double ms, quint64, int stride) {
             view_->setMap(std::move(map));
@@ -194,6 +196,10 @@ std::optional<std::size_t> MainWindow::beamSonar() const {
 
 const QString& MainWindow::logPath() const {
   return document_->logPath();
+}
+
+void MainWindow::applyEngine() {
+  remap_->setPrecision(preferences::kFastEngine.value() ? Precision::Fast : Precision::Exact);
 }
 
 const sg::MapperSettings& MainWindow::mapperSettings() const {

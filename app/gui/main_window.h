@@ -88,6 +88,9 @@ class MainWindow : public QMainWindow {
   // so the parameter panel does not say that the rule changed with the model.
   void setMapperSettings(const sg::MapperSettings& settings, bool ruleNamed = false);
   const sg::MapperSettings& mapperSettings() const;
+  // Maps with the engine Settings ▸ Preferences names (preferences::kFastEngine): at start, and
+  // after the dialog; a change re-maps the log.
+  void applyEngine();
   // Cell size in metres, clamped to [0.005, 1]; undoable; re-maps.
   void setCellSize(double metres);
 

@@ -218,7 +218,10 @@ void MainWindow::createMenus() {
   QAction* preferences = settings->addAction(tr("&Preferences…"));
   preferences->setMenuRole(QAction::PreferencesRole);
   preferences->setShortcut(QKeySequence::Preferences);
-  connect(preferences, &QAction::triggered, this, [this] { PreferencesDialog(this).exec(); });
+  connect(preferences, &QAction::triggered, this, [this] {
+    PreferencesDialog(this).exec();
+    applyEngine();
+  });
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   QAction* guide = help->addAction(tr("&User Guide"));

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "preferences.h"
+#include <QCheckBox>
 
 #include <QDialogButtonBox>
 #include <QFormLayout>
@@ -46,9 +47,17 @@ PreferencesDialog::PreferencesDialog(QWidget* parent) : QDialog(parent) {
   automatic->setWordWrap(true);
   automatic->setObjectName(QStringLiteral("automaticThreads"));
 
+  fast_ = new QCheckBox(tr("&Fast engine: Bayes cells in 4 bytes"), this);
+  fast_->setChecked(preferences::kFastEngine.value());
+  fast_->setToolTip(
+      tr("A cone model's Bayes cells (bayes, bayes-recursive) take four bytes instead of eight, "
+         "within a tested tolerance of the exact engine (docs/models.md, \"Exact and fast "
+         "engines\"); every other pair maps the same. Not yet faster: off by default."));
+
   auto* form = new QFormLayout;
   form->addRow(tr("Mapping &threads:"), threads_);
   form->addRow(QString(), automatic);
+  form->addRow(tr("Engine:"), fast_);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, this);
   connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
   connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
@@ -59,6 +68,7 @@ PreferencesDialog::PreferencesDialog(QWidget* parent) : QDialog(parent) {
 
 void PreferencesDialog::accept() {
   preferences::kMappingThreads.set(threads_->value());
+  preferences::kFastEngine.set(fast_->isChecked());
   applyMappingThreads();
   QDialog::accept();
 }

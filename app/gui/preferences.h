@@ -8,6 +8,7 @@
 #include <QString>
 #include <QVariant>
 
+class QCheckBox;
 class QLabel;
 class QSpinBox;
 
@@ -36,6 +37,9 @@ namespace preferences {
 // Threads mapping may use (core/sonargrid/base/concurrency.h); 0: automatic, i.e.
 // SONARGRID_THREADS, else the CPUs the process may run on.
 inline constexpr Preference<int> kMappingThreads{"performance/mappingThreads", 0};
+// Map with the fast engine (docs/models.md, "Exact and fast engines"): a cone model's Bayes cells
+// in four bytes instead of eight. Off: the exact engine.
+inline constexpr Preference<bool> kFastEngine{"performance/fastEngine", false};
 }  // namespace preferences
 
 // Gives the core's thread policy the stored Mapping threads (at start, and when it changes). A
@@ -46,18 +50,21 @@ unsigned applyMappingThreads();
 // CPUs this process may use" (and, for a bad SONARGRID_THREADS, that it is passed over and why).
 QString automaticThreadsDescription();
 
-// Settings ▸ Preferences: the Mapping threads spin box (0 = automatic). OK stores and applies it.
+// Settings ▸ Preferences: the Mapping threads spin box (0 = automatic) and the engine. OK stores
+// them and applies the threads; the window applies the engine (MainWindow::applyEngine).
 class PreferencesDialog : public QDialog {
   Q_OBJECT
 
  public:
   explicit PreferencesDialog(QWidget* parent = nullptr);
   QSpinBox* mappingThreads() const { return threads_; }
+  QCheckBox* fastEngine() const { return fast_; }
 
   void accept() override;
 
  private:
   QSpinBox* threads_;
+  QCheckBox* fast_;
 };
 
 }  // namespace sg::app

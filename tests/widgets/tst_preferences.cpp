@@ -4,6 +4,7 @@
 // Settings ▸ Preferences in the window.
 
 #include <QApplication>
+#include <QCheckBox>
 #include <QMenuBar>
 #include <QSettings>
 #include <QSpinBox>
@@ -14,6 +15,7 @@
 
 #include "main_window.h"
 #include "preferences.h"
+#include "remap_controller.h"
 #include "sonargrid/base/concurrency.h"
 
 using namespace sg;
@@ -105,13 +107,21 @@ class TestPreferences : public QObject {
       }
       shown = true;
       dialog->mappingThreads()->setValue(4);
+      QVERIFY(!dialog->fastEngine()->isChecked());  // the exact engine by default
+      dialog->fastEngine()->setChecked(true);
       dialog->accept();
     };
+    QCOMPARE(window.remapController()->precision(), Precision::Exact);
     QTimer::singleShot(0, this, answer);
     action->trigger();  // the dialog is modal: returns once the timer has accepted it
     QVERIFY(shown);
     QCOMPARE(app::preferences::kMappingThreads.value(), 4);
     QCOMPARE(threadCount(), 4u);
+    // The engine reaches the window's re-maps, and a new window starts with it.
+    QVERIFY(app::preferences::kFastEngine.value());
+    QCOMPARE(window.remapController()->precision(), Precision::Fast);
+    app::MainWindow next(ui::GridView::Backend::Raster);
+    QCOMPARE(next.remapController()->precision(), Precision::Fast);
   }
 };
 

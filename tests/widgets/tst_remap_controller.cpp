@@ -184,6 +184,31 @@ class TestRemapController : public QObject {
     QVERIFY(full->level == batchMap(*data, second, end, 0.05).level);
   }
 
+  void theEngineReachesEveryRun() {
+    // setPrecision(): every run maps with that engine whatever the settings say, and a change
+    // re-maps: the fast map is the batch map under Precision::Fast (a cone model's Bayes cells
+    // in four bytes: docs/models.md), the exact one the batch map under Exact.
+    const auto data = roomLog();
+    RemapController remap;
+    QSignalSpy mapped(&remap, &RemapController::mapped);
+    MapperSettings s = settingsFor("murphy", "bayes-recursive");
+    remap.start(data, 0.05, s, std::numeric_limits<double>::infinity());
+    QVERIFY(mapped.wait(60000));
+    const auto exact = mapped.at(0).at(0).value<std::shared_ptr<const OccupancyMap>>();
+    remap.setPrecision(Precision::Fast);
+    QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), 2, 60000);
+    const auto fast = mapped.at(1).at(0).value<std::shared_ptr<const OccupancyMap>>();
+    s.precision = Precision::Fast;
+    const double end = std::numeric_limits<double>::infinity();
+    QVERIFY(fast->probability == batchMap(*data, s, end, 0.05).probability);
+    s.precision = Precision::Exact;
+    QVERIFY(exact->probability == batchMap(*data, s, end, 0.05).probability);
+    QVERIFY(fast->probability != exact->probability);  // four bytes, not eight
+    remap.setSettings(s);                              // says Exact: the controller's engine wins
+    QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), 3, 60000);
+    QCOMPARE(remap.settings().precision, Precision::Fast);
+  }
+
   void previewOnlyForSlowLogs() {
     // The window previews only when the last full re-map took longer than `aboveMs`: with an
     // hour's threshold, never.
