@@ -32,7 +32,9 @@ SweepOptions parseSweepOptions(Arguments& args, const std::vector<std::string>& 
     // A sweep's batched evaluation maps every set with the exact engine (docs/models.md, "Exact
     // and fast engines"): its rankings are the oracle's.
     if (probe.value("--precision").value_or("exact") != "exact")
-      throw UsageError("a sweep maps every set with the exact engine: leave out --precision");
+      throw UsageError(
+          "sweeps, the optimiser and the goodness study map with the exact engine: leave out "
+          "--precision");
   }
   o.map = parseMapOptions(args);
   o.map.settings.precision = Precision::Exact;

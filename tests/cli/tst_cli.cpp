@@ -863,7 +863,10 @@ void TstCli::errors_data() {
   QTest::newRow("sweep: --precision fast")
       << QStringList{"sweep", "--log",    log,     "--model",     "hpf", "--rule",
                      "bayes", "--metric", "vsdns", "--precision", "fast"}
-      << 2 << "a sweep maps every set with the exact engine: leave out --precision" << true;
+      << 2
+      << "sweeps, the optimiser and the goodness study map with the exact engine: leave out "
+         "--precision"
+      << true;
   QTest::newRow("map: --iterations with an inverse model")
       << (map + QStringList{"--iterations", "5"}) << 2
       << "--iterations caps EM's iterations: it goes with --model forward-em" << true;
