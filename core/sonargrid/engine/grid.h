@@ -202,7 +202,7 @@ class Grid {
   // (Mapper::integrateDirect marks a chunk's cells on the thread that lists them, ahead of the
   // thread that folds them in.) A mark already set is only read: the threads list chunks of one
   // neighbourhood in turn, and a store to a line the other CPU had written took that line from
-  // it every time (docs/performance.md, "HIMM: marks read before they are set").
+  // it every time (the history of docs/performance.md, "HIMM: marks read before they are set").
   void markWrittenShared(std::span<const std::uint32_t> cells) {
     std::uint8_t* const marks = marks_.data();
     constexpr std::uint8_t kBoth = kObserved | kWritten;
