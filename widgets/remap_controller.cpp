@@ -124,8 +124,7 @@ void RemapController::start(std::shared_ptr<const ScanSource> source, double cel
                             const MapperSettings& settings, double until) {
   const bool live = source && !source->complete();
   adopt(std::move(source), live, cellSize);
-  settings_ = settings;
-  settings_.precision = precision_;
+  settings_ = effective(settings);
   haveSettings_ = true;
   until_ = until;
   remap();
@@ -134,8 +133,7 @@ void RemapController::start(std::shared_ptr<const ScanSource> source, double cel
 void RemapController::startLive(std::shared_ptr<const ScanSource> source, double cellSize,
                                 const MapperSettings& settings, double until) {
   adopt(std::move(source), true, cellSize);
-  settings_ = settings;
-  settings_.precision = precision_;
+  settings_ = effective(settings);
   haveSettings_ = true;
   until_ = until;
   remap();
@@ -151,16 +149,32 @@ void RemapController::start(std::shared_ptr<const Dataset> data, double cellSize
         until);
 }
 
+MapperSettings RemapController::effective(const MapperSettings& settings) const {
+  MapperSettings s = settings;
+  s.precision = hasFastCells(s.model, s.rule) ? precision_ : Precision::Exact;
+  return s;
+}
+
+bool RemapController::mapsWith(const MapperSettings& settings) const {
+  return haveSettings_ && effective(settings) == settings_;
+}
+
 void RemapController::setPrecision(Precision precision) {
   if (precision == precision_) return;
   precision_ = precision;
-  settings_.precision = precision;
+  if (!haveSettings_) return;
+  const MapperSettings now = effective(settings_);
+  if (now == settings_) return;  // a pair whose cells are the same under both engines
+  settings_ = now;
   remap();
 }
 
 void RemapController::setSettings(const MapperSettings& settings) {
-  settings_ = settings;
-  settings_.precision = precision_;
+  // Another model or rule costs another amount per reading: the next preview's stride starts from
+  // the full map's cost again.
+  if (settings.model != settings_.model || settings.rule != settings_.rule)
+    previewMsPerReading_ = 0.0;
+  settings_ = effective(settings);
   haveSettings_ = true;
   run(previewFactor_ > 1 && lastFullMs_ > previewAboveMs_);
 }
@@ -174,11 +188,19 @@ void RemapController::setPreviewBudget(double ms) {
   previewBudgetMs_ = std::max(0.0, ms);
 }
 
+// Readings of the log up to `until` (all of them for +infinity).
+static std::size_t readingsUpTo(const Dataset& data, double until) {
+  std::size_t n = 0;
+  for (const Scan& scan : data.scans)
+    for (const Reading& r : scan.readings) n += r.time <= until;
+  return n;
+}
+
 int RemapController::previewStride() const {
   if (previewBudgetMs_ <= 0.0 || !source_) return 1;
   const std::shared_ptr<const Dataset> data = source_->view();
   if (!data) return 1;
-  const double readings = static_cast<double>(data->readingCount());
+  const double readings = static_cast<double>(readingsUpTo(*data, until_));
   if (readings <= 0.0) return 1;
   // Before any preview: cells `factor` times larger cost about 60 % of the full map on the bundled
   // logs at a factor of 2 (raschke-multi at 5 cm: 25 against 39 ms).
@@ -193,41 +215,55 @@ void RemapController::startPreview(quint64 generation,
   struct Preview {
     std::shared_ptr<const OccupancyMap> map;
     double ms = 0.0;
+    double mappingMs = 0.0;  // the readings' own, without the grid's set-up and the snapshot
     std::size_t readings = 0;
   };
   const int stride = previewStride();
   jobs_.run<Preview>(
       cancel,
       [data = source_->view(), settings = settings_, cellSize = cellSize_ * previewFactor_,
-       until = until_, stride](const std::atomic<bool>* stop) {
+       until = until_, stride, ground = previewGround_](const std::atomic<bool>* stop) {
         Preview p;
         const auto t0 = std::chrono::steady_clock::now();
-        // The same ground as the full map (the log's fitting grid), so the view keeps its place.
-        const auto mapper = mapperFor(*data, settings, cellSize);
-        bool done = false;
-        if (stride <= 1) {
-          done = mapper->mapDataset(*data, until, stop);
-        } else {
-          Dataset thin;
+        // The same ground as the full map (the log's fitting grid, kept for the next preview: it
+        // reads every reading), so the view keeps its place.
+        if (ground->data != data || ground->cellSize != cellSize || ground->pose != settings.pose) {
+          ground->spec = data->fittingGrid(settings.pose, cellSize);
+          ground->data = data;
+          ground->cellSize = cellSize;
+          ground->pose = settings.pose;
+        }
+        Mapper mapper(data->ring, ground->spec, settings);
+        // One scan in `stride` of those the pose source places (with true poses, a scan without
+        // one is left out of any map).
+        Dataset thin;
+        const Dataset* mapped = data.get();
+        if (stride > 1) {
           thin.ring = data->ring;
           thin.scans.reserve(data->scans.size() / std::size_t(stride) + 1);
-          for (std::size_t i = 0; i < data->scans.size(); i += std::size_t(stride))
-            thin.scans.push_back(data->scans[i]);
-          done = mapper->mapDataset(thin, until, stop);
+          std::size_t placed = 0;
+          for (const Scan& scan : data->scans) {
+            if (settings.pose == PoseSource::Truth && !scan.truth) continue;
+            if (placed++ % std::size_t(stride) == 0) thin.scans.push_back(scan);
+          }
+          mapped = &thin;
         }
-        if (done) {
-          p.map = std::make_shared<const OccupancyMap>(mapper->snapshot());
+        const auto t1 = std::chrono::steady_clock::now();
+        if (mapper.mapDataset(*mapped, until, stop)) {
+          p.mappingMs = msSince(t1);
+          p.map = std::make_shared<const OccupancyMap>(mapper.snapshot());
           p.ms = msSince(t0);
-          p.readings = mapper->readingsIntegrated();
+          p.readings = mapper.readingsIntegrated();
         }
         return p;
       },
       [this, generation, stride](JobOutcome<Preview> outcome) {
-        if (!outcome.value || !outcome.value->map) return;  // an error is the full run's to report
+        // An error is the full run's to report; a superseded preview says nothing of the settings
+        // or cells now in force.
+        if (!outcome.value || !outcome.value->map || generation != generation_) return;
         if (outcome.value->readings > 0)
-          previewMsPerReading_ = outcome.value->ms / double(outcome.value->readings);
-        if (generation == generation_)
-          emit previewed(outcome.value->map, outcome.value->ms, generation, stride);
+          previewMsPerReading_ = outcome.value->mappingMs / double(outcome.value->readings);
+        emit previewed(outcome.value->map, outcome.value->ms, generation, stride);
       });
 }
 

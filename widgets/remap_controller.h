@@ -85,13 +85,17 @@ class RemapController : public QObject {
   // log took more than `aboveMs`; factor 1 (the default) turns previews off.
   void setPreview(int factor, double aboveMs);
   int previewFactor() const { return previewFactor_; }
-  // The engine every run maps with, whatever the settings given say (MapperSettings::precision):
-  // a change re-maps the log.
+  // The engine every run maps with, whatever the settings given say (MapperSettings::precision),
+  // for the pairs whose cells differ under it (hasFastCells(); the others map with Exact, their
+  // same cells): a change re-maps the log where it changes the cells.
   void setPrecision(Precision precision);
   Precision precision() const { return precision_; }
-  // A preview maps one scan in `stride` so that it takes about `ms` (0, the default: every scan),
-  // the stride estimated from the last preview's cost per reading (before the first, from the last
-  // full re-map's), from 1 to kMaxPreviewStride.
+  // Whether setSettings(settings) would map what is mapped now (the engine as above).
+  bool mapsWith(const MapperSettings& settings) const;
+  // A preview maps one scan in `stride` so that its readings take about `ms` (0, the default: every
+  // scan), the stride estimated from the last preview's cost per reading (before the first, and
+  // after a change of log, cells, model or rule, from the last full re-map's), from 1 to
+  // kMaxPreviewStride: a log too long for the budget at that stride takes longer.
   void setPreviewBudget(double ms);
   static constexpr int kMaxPreviewStride = 64;
   // The stride the next preview would take.
@@ -144,6 +148,7 @@ class RemapController : public QObject {
   void enqueue(Request request);
   void startPreview(quint64 generation, const std::shared_ptr<std::atomic<bool>>& cancel);
   void adopt(std::shared_ptr<const ScanSource> source, bool live, double cellSize);
+  MapperSettings effective(const MapperSettings& settings) const;
 
   std::shared_ptr<const ScanSource> source_;
   bool live_ = false;  // mapped on a growing grid (startLive(), or a source not yet complete)
@@ -159,8 +164,16 @@ class RemapController : public QObject {
   int previewFactor_ = 1;
   double previewAboveMs_ = 0.0;
   double previewBudgetMs_ = 0.0;
-  double previewMsPerReading_ = 0.0;  // what the last preview cost (0: none yet)
-  double lastFullMs_ = 0.0;           // the last full re-map from scratch (not a continuation)
+  double previewMsPerReading_ = 0.0;  // what the last preview's readings cost (0: none yet)
+  // The preview's grid, the log's fitting grid at its cell size; touched only by preview jobs.
+  struct PreviewGround {
+    std::shared_ptr<const Dataset> data;
+    double cellSize = 0.0;
+    PoseSource pose = PoseSource::Odometry;
+    GridSpec spec;
+  };
+  std::shared_ptr<PreviewGround> previewGround_ = std::make_shared<PreviewGround>();
+  double lastFullMs_ = 0.0;  // the last full re-map from scratch (not a continuation)
   std::shared_ptr<const OccupancyMap> lastMap_;
   // Touched only by jobs, and jobs run one at a time.
   std::shared_ptr<WarmMapper> warm_;

@@ -261,7 +261,7 @@ void MainWindow::onSettingsChanged() {
   if (document_->source() && remap_->source() != document_->source()) return;
   const MapperSettings& settings = document_->mapperSettings();
   // The same settings again (a menu item that is already checked, a panel echo) map nothing new.
-  if (document_->dataset() && settings == remap_->settings()) return;
+  if (document_->dataset() && remap_->mapsWith(settings)) return;
   remap_->setSettings(settings);
 }
 

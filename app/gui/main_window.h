@@ -263,8 +263,8 @@ class MainWindow : public QMainWindow {
   // A settings change on a log whose full re-map takes longer than half a frame is first
   // previewed on cells twice as large, from one scan in N with N chosen so that the preview takes
   // about kPreviewBudgetMs (RemapController::setPreviewBudget): the dragged slider's picture
-  // follows within a frame on any log, and the full map, delayed by about the budget, replaces it
-  // when the slider rests (bench_remap_latency measures both).
+  // follows within a frame or two on any log, and the full map, delayed by about the budget,
+  // replaces it when the slider rests (bench_remap_latency measures both).
   static constexpr int kPreviewFactor = 2;
   static constexpr double kPreviewBudgetMs = 6.0;
   static constexpr double kPreviewAboveMs = 8.0;

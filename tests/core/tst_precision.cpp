@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,8 @@
 #include "sonargrid/metrics/reference_score.h"
 #include "sonargrid/reference/read_reference.h"
 #include "sonargrid/rules/rule_classes.h"
+#include "sonargrid/simd/lanes.h"
+#include "sonargrid/testing/registry_hooks.h"
 
 using namespace sg;
 
@@ -176,9 +179,8 @@ class TestPrecision : public QObject {
                qPrintable(QString::number(high, 'g', 17)));
       f.cells[0].probability = 0.1f;
       for (int i = 0; i < 8; ++i) rule->apply(f, grid);
-      // 0.9f and 0.1f are not exactly 9/10 and 1/10, and the fast cell's sixteen float
-      // additions of log-odds near ±2.2 (a float step 2.4e-7 there) round: back to 0.5 within
-      // 1e-5.
+      // 0.9f and 0.1f are not exactly 9/10 and 1/10, and the fast cell rounds each of its
+      // sixteen steps to 21 significant bits: back to 0.5 within 1e-5.
       QVERIFY2(std::abs(rule->occupancy(grid, 0) - 0.5) < 1e-5,
                qPrintable(QString::number(rule->occupancy(grid, 0), 'g', 17)));
     }
@@ -211,29 +213,38 @@ class TestPrecision : public QObject {
   }
 
   void fastMapIsTheSameAtAnyThreadCountAndIncrementally() {
+    // The fast cells' bits at 1, 2, 3 and 8 threads, with the run kernels in AVX-512's eight
+    // masked lanes (where the CPU has them) and in the four plain ones; scan by scan
+    // (Mapper::integrate); through whole footprints, one cell at a time (FastBayesRule::apply,
+    // with an observer); up to a time t; and appended in two batches on a grid that grows (live
+    // mapping), against the batch map on the grown grid's limits. Each must equal the first.
     const Dataset data = readSglog(SONARGRID_DATASETS "/office/office.sglog");
+    auto bitsOf = [](const Mapper& m) {
+      const BayesFloatCell* cells = m.storage().cells<BayesFloatCell>();
+      std::vector<std::uint32_t> bits(m.grid().cellCount());
+      for (std::size_t i = 0; i < bits.size(); ++i) bits[i] = cells[i].bits;
+      return bits;
+    };
     for (const char* rule : {"bayes", "bayes-recursive"}) {
       const MapperSettings s = settingsFor("hpf", rule, Precision::Fast);
       const GridSpec grid = data.fittingGrid(s.pose, 0.05);
       std::vector<std::uint32_t> first;
-      for (const unsigned threads : {1u, 2u, 3u, 8u}) {
-        const ScopedThreadCount scoped(threads);
-        Mapper m(data.ring, grid, s);
-        m.mapDataset(data);
-        const BayesFloatCell* cells = m.storage().cells<BayesFloatCell>();
-        std::vector<std::uint32_t> bits(grid.cellCount());
-        for (std::size_t i = 0; i < bits.size(); ++i) bits[i] = cells[i].bits;
-        if (first.empty())
-          first = bits;
-        else
-          QVERIFY2(first == bits, rule);
+      for (const ConeLanes lanes : {ConeLanes::Avx512, ConeLanes::Four}) {
+        const ConeLanes previous = testing::limitConeLanes(lanes);
+        for (const unsigned threads : {1u, 2u, 3u, 8u}) {
+          const ScopedThreadCount scoped(threads);
+          Mapper m(data.ring, grid, s);
+          m.mapDataset(data);
+          if (first.empty())
+            first = bitsOf(m);
+          else
+            QVERIFY2(first == bitsOf(m), rule);
+        }
+        testing::limitConeLanes(previous);
       }
       Mapper scanByScan(data.ring, grid, s);
       for (const Scan& scan : data.scans) scanByScan.integrate(scan);
-      const BayesFloatCell* cells = scanByScan.storage().cells<BayesFloatCell>();
-      for (std::size_t i = 0; i < first.size(); ++i) QVERIFY2(first[i] == cells[i].bits, rule);
-      // With an observer the mapper applies whole footprints, one CellEvidence at a time
-      // (FastBayesRule::apply): the run kernels' lanes give every cell the same bits.
+      QVERIFY2(first == bitsOf(scanByScan), rule);
       struct Watch final : FootprintObserver {
         void reset(std::size_t) override {}
         void observe(const Footprint&) override {}
@@ -241,8 +252,51 @@ class TestPrecision : public QObject {
       Mapper footprints(data.ring, grid, s);
       footprints.setObserver(&watch);
       footprints.mapDataset(data);
-      cells = footprints.storage().cells<BayesFloatCell>();
-      for (std::size_t i = 0; i < first.size(); ++i) QVERIFY2(first[i] == cells[i].bits, rule);
+      QVERIFY2(first == bitsOf(footprints), rule);
+
+      const double t = data.scans[data.scans.size() / 2].time;
+      Mapper upTo(data.ring, grid, s);
+      upTo.mapDataset(data, t);
+      Mapper upToScans(data.ring, grid, s);
+      for (const Scan& scan : data.scans) upToScans.integrate(scan, t);
+      QVERIFY2(bitsOf(upTo) == bitsOf(upToScans), rule);
+
+      const Position p = data.scans.front().odometry.position;
+      Mapper live(data.ring, GridSpec::covering(p, p, 0.05, 0.0), s);
+      const std::span<const Scan> scans(data.scans);
+      const std::size_t half = scans.size() / 2;
+      live.append(scans.first(half));
+      live.append(scans.subspan(half));
+      Mapper batch(data.ring, live.grid(), s);
+      batch.mapDataset(data);
+      QVERIFY2(bitsOf(live) == bitsOf(batch), rule);
+    }
+  }
+
+  void aPriorOnALevelBoundaryKeepsItsLevel() {
+    // A cell nobody has seen holds the prior. 0.3 and 0.9 lie on the boundaries of the 16 levels
+    // (round(15 p): 4.5 and 13.5); the exact cell's double gives levels 5 and 14 (15 · 0.3 rounds
+    // to 4.5 exactly, 15 · 0.9 to 13.5), and so must the fast cell, whose 21 significant bits
+    // would fall on the other side (0.29999995, 0.89999998).
+    for (const double prior : {0.3, 0.9, 1.0 / 6.0, 0.5}) {
+      std::uint8_t levels[2];
+      double p[2];
+      for (const Precision precision : {Precision::Exact, Precision::Fast}) {
+        const auto rule = makeUpdateRule("bayes", precision);
+        ParameterSet params = defaultParameters("hpf", "bayes");
+        params.set("prior", prior);
+        rule->configure(params);
+        GridSpec spec;
+        spec.cellSize = 0.05;
+        spec.width = 1;
+        spec.height = 1;
+        const Grid grid(spec, rule->layout());
+        levels[precision == Precision::Fast] = rule->level(grid, 0);
+        p[precision == Precision::Fast] = rule->occupancy(grid, 0);
+      }
+      QCOMPARE(levels[1], levels[0]);
+      QCOMPARE(p[1], p[0]);
+      QCOMPARE(p[0], prior);
     }
   }
 };

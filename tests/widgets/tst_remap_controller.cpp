@@ -207,6 +207,19 @@ class TestRemapController : public QObject {
     remap.setSettings(s);                              // says Exact: the controller's engine wins
     QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), 3, 60000);
     QCOMPARE(remap.settings().precision, Precision::Fast);
+    QVERIFY(remap.mapsWith(s));  // what the window asks before it re-maps (onSettingsChanged)
+    // A pair whose cells are the same under both engines maps with Exact, and a change of engine
+    // does not re-map it.
+    const MapperSettings himm = settingsFor("himm", "himm");
+    remap.setSettings(himm);
+    QTRY_COMPARE_WITH_TIMEOUT(mapped.count(), 4, 60000);
+    QCOMPARE(remap.settings().precision, Precision::Exact);
+    QSignalSpy started(&remap, &RemapController::started);
+    remap.setPrecision(Precision::Exact);
+    remap.setPrecision(Precision::Fast);
+    QTest::qWait(100);
+    QCOMPARE(started.count(), 0);
+    QVERIFY(remap.mapsWith(himm));
   }
 
   void previewOnlyForSlowLogs() {

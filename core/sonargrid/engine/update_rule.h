@@ -287,8 +287,8 @@ Precision precisionFromName(const std::string& name);
 // Whether `model` × `rule` has cells of its own under Fast: a cone model with the Bayes family.
 // Every other pair keeps its exact cells under both. HIMM's axis model gives a few discrete
 // values, and its cells sit on the 16 levels' boundaries (p_hit = 0.7 is the boundary of levels 10
-// and 11), where the exact cell's side is decided by the last bit of a double, which a
-// single-precision log-odds cannot follow; it keeps exact cells (docs/models.md).
+// and 11), where the exact cell's side is decided by the last bits of a double, which a cell of
+// 21 significant bits cannot follow; it keeps exact cells (docs/models.md).
 bool hasFastCells(const std::string& model, const std::string& rule);
 
 std::vector<std::string> updateRuleNames();

@@ -11,7 +11,8 @@
 namespace sg {
 
 void FastBayesRule::configure(const ParameterSet& p) {
-  prior_ = cellOf(p.get("prior"));
+  priorP_ = p.get("prior");
+  prior_ = cellOf(priorP_);
 }
 
 double FastBayesRule::readingProbability(const CellEvidence& c) const {

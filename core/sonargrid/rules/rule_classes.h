@@ -85,9 +85,9 @@ class BayesRule final : public RuleOnCells<BayesRule, BayesCell> {
 // upper half of that double's bits: its sign, its whole exponent (down to the exact cell's floor,
 // 2⁻⁹⁶⁰) and 20 bits of its mantissa, rounded to nearest. A sign bit clear stands for p = v, set
 // for p = 1 + v = 1 − |v| (−0: certain). A reading widens the cell to the double p, takes the exact
-// rule's step (cell_updates.h, bayes), and rounds the new p once; near 1, where the exact cell's p
-// is a whole number of 2⁻⁵³ below 1, which the 20 bits hold, it becomes certain where the exact
-// cell does.
+// rule's step (cell_updates.h, bayes), and rounds the new p once; within 2⁻³² of 1, where the
+// exact cell's p is a whole number of 2⁻⁵³ below 1, the cell holds that number exactly, and it
+// rounds to certainty by the exact rule's own arithmetic.
 struct BayesFloatCell {
   std::uint32_t bits;  // the upper half of the double v
 };
@@ -115,15 +115,20 @@ class FastBayesRule final : public RuleOnCells<FastBayesRule, BayesFloatCell> {
     const double v = p > 0.5 ? -(1.0 - p) : p;
     return {static_cast<std::uint32_t>((std::bit_cast<std::uint64_t>(v) + 0x80000000u) >> 32)};
   }
-  double occupancyOf(const BayesFloatCell& c) const { return probabilityOf(c); }
-  double nativeOf(const BayesFloatCell& c) const { return probabilityOf(c); }
-  bool filledOf(const BayesFloatCell& c) const { return probabilityOf(c) > 0.5; }
+  // A cell at the prior's bits (every cell nobody has seen) reads as the prior itself, not as its
+  // 21 significant bits: a prior on a level's boundary (0.3, 0.9) keeps the exact cell's level.
+  double occupancyOf(const BayesFloatCell& c) const {
+    return c.bits == prior_.bits ? priorP_ : probabilityOf(c);
+  }
+  double nativeOf(const BayesFloatCell& c) const { return occupancyOf(c); }
+  bool filledOf(const BayesFloatCell& c) const { return occupancyOf(c) > 0.5; }
 
  private:
   // The reading's p at one cell, as BayesRule computes it.
   double readingProbability(const CellEvidence& c) const;
   BayesRule::Input input_;
   BayesFloatCell prior_ = cellOf(0.5);
+  double priorP_ = 0.5;
 };
 
 // The log method of paper 001 §3.3 as a sum of logs, cut to [cut_min, cut_max].
