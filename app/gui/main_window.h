@@ -266,7 +266,7 @@ class MainWindow : public QMainWindow {
   // follows within a frame or two on any log, and the full map, delayed by about the budget,
   // replaces it when the slider rests (bench_remap_latency measures both).
   static constexpr int kPreviewFactor = 2;
-  static constexpr double kPreviewBudgetMs = 6.0;
+  static constexpr double kPreviewBudgetMs = 4.0;
   static constexpr double kPreviewAboveMs = 8.0;
   QStringList recent_;
   // The menus' actions (main_window_menus.cpp), held together as Qt Designer's Ui classes hold
