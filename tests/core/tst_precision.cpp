@@ -73,6 +73,15 @@ const Checked kMetrics[] = {{Metric::Iop, 0.5},
                             {Metric::PathFalsePositive, 0.5},
                             {Metric::Auc, 0.005}};
 
+// A grid of one 5 cm cell, for one cell's updates.
+GridSpec oneCell() {
+  GridSpec spec;
+  spec.cellSize = 0.05;
+  spec.width = 1;
+  spec.height = 1;
+  return spec;
+}
+
 struct Worst {
   double differingPct = 0.0;  // of observed cells
   int levelStep = 0;
@@ -163,11 +172,7 @@ class TestPrecision : public QObject {
     for (const Precision precision : {Precision::Exact, Precision::Fast}) {
       const auto rule = makeUpdateRule("bayes-recursive", precision);
       rule->configure(defaultParameters("hpf", "bayes-recursive"));
-      GridSpec spec;
-      spec.cellSize = 0.05;
-      spec.width = 1;
-      spec.height = 1;
-      Grid grid(spec, rule->layout());
+      Grid grid(oneCell(), rule->layout());
       Footprint f;
       CellEvidence c;
       c.cell = 0;
@@ -193,11 +198,7 @@ class TestPrecision : public QObject {
     for (const Precision precision : {Precision::Exact, Precision::Fast}) {
       const auto rule = makeUpdateRule("bayes-recursive", precision);
       rule->configure(defaultParameters("hpf", "bayes-recursive"));
-      GridSpec spec;
-      spec.cellSize = 0.05;
-      spec.width = 1;
-      spec.height = 1;
-      Grid grid(spec, rule->layout());
+      Grid grid(oneCell(), rule->layout());
       Footprint f;
       f.cells.push_back(CellEvidence{});
       auto apply = [&](float p) {
@@ -286,11 +287,7 @@ class TestPrecision : public QObject {
         ParameterSet params = defaultParameters("hpf", "bayes");
         params.set("prior", prior);
         rule->configure(params);
-        GridSpec spec;
-        spec.cellSize = 0.05;
-        spec.width = 1;
-        spec.height = 1;
-        const Grid grid(spec, rule->layout());
+        const Grid grid(oneCell(), rule->layout());
         levels[precision == Precision::Fast] = rule->level(grid, 0);
         p[precision == Precision::Fast] = rule->occupancy(grid, 0);
       }
