@@ -281,8 +281,7 @@ class RuleOnCells : public UpdateRule {
 // the tolerance that tests/core/tst_precision.cpp holds it to against Exact. Both are
 // deterministic: the same bits at any thread count and in batch, incremental and live mapping.
 enum class Precision { Exact, Fast };
-// "exact" or "fast"; precisionFromName() throws std::invalid_argument for another name.
-const char* precisionName(Precision precision);
+// The precision named "exact" or "fast"; throws std::invalid_argument for another name.
 Precision precisionFromName(const std::string& name);
 // Whether `model` × `rule` has cells of its own under Fast: a cone model with the Bayes family.
 // Every other pair keeps its exact cells under both. HIMM's axis model gives a few discrete

@@ -22,10 +22,6 @@ std::vector<std::string> updateRuleNames() {
   return {"addition", "bayes", "bayes-recursive", "log", "logodds", "himm", "dempster-shafer"};
 }
 
-const char* precisionName(Precision precision) {
-  return precision == Precision::Exact ? "exact" : "fast";
-}
-
 Precision precisionFromName(const std::string& name) {
   if (name == "exact") return Precision::Exact;
   if (name == "fast") return Precision::Fast;
