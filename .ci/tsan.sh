@@ -28,9 +28,9 @@ export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/.
 # which runs below with a subset of its longest function's rows; and tst_bag_log (177 s under
 # TSan on 2026-12-02, then with 140 maps of the room log, now 70: mapping whose threads tst_mapper
 # checks here; its bag readers run on one thread, as tst_rosbag1, tst_rosbag2 and tst_ros_messages
-# do here).
+# do here); and tst_precision, which runs below with a subset of its contract's rows.
 ctest --test-dir build-tsan -L "core|cli" \
-  -E '^(tst_cli_threads|tst_cli_bench|tst_reproduce|tst_cli_goodness_study|tst_fused_runs|tst_bag_log)$' \
+  -E '^(tst_cli_threads|tst_cli_bench|tst_reproduce|tst_cli_goodness_study|tst_fused_runs|tst_bag_log|tst_precision)$' \
   --output-on-failure -j "$(nproc)"
 # tst_fused_runs: every function whole but runsGiveTheFootprintPathsBits (60 rows, each mapping the
 # workload at 1, 2 and 3 threads in three lane widths: 145 s of its 205 s under TSan), of which one
@@ -41,6 +41,18 @@ rows=("hpf/addition" "hpf/bayes" "hpf/bayes-recursive" "hpf/log" "hpf/logodds" "
   "konolige/addition normalise=0" "murphy/bayes no_echo=1" "parameterized/logodds prior=0.3")
 mapfile -t functions < <("$fused" -functions | sed 's/()$//' | grep -vx "$long")
 "$fused" "${functions[@]}" "${rows[@]/#/$long:}"
+# tst_precision: every function whole but two. Its contract runs on the three short logs (every
+# pair mapped exact and fast on each: the office and arafat-room rows take 16 of the function's 19
+# s uninstrumented, and it passed Qt Test's five-minute limit for one function under TSan on
+# 2026-12-03); its fast engine's threads, on the office log, for one rule of the two (each row maps
+# the log twelve times: 140 s under TSan), bayes-recursive, whose cells the run kernels update
+# in the same code as bayes's.
+precision=build-tsan/tests/core/tst_precision
+mapfile -t functions < <("$precision" -functions | sed 's/()$//' |
+  grep -vxE 'everyPairKeepsTheContract|fastMapIsTheSameAtAnyThreadCountAndIncrementally')
+"$precision" "${functions[@]}" everyPairKeepsTheContract:room \
+  everyPairKeepsTheContract:raschke-single everyPairKeepsTheContract:raschke-multi \
+  fastMapIsTheSameAtAnyThreadCountAndIncrementally:bayes-recursive
 # tst_cli_threads runs the CLI 100 times (every pair at three thread counts), over five minutes
 # under TSan. Here: one pair for each way of mapping (bands, bands in two passes for totals, the
 # pipeline), then its other cases whole. The full suite runs in the uninstrumented build (.ci/test.sh).

@@ -94,65 +94,76 @@ struct Worst {
 class TestPrecision : public QObject {
   Q_OBJECT
 
+  std::map<std::string, Worst> worst_;  // each pair's worst case over the rows run
+
  private slots:
+  void everyPairKeepsTheContract_data() {
+    QTest::addColumn<int>("log");
+    for (int i = 0; i < int(std::size(kLogs)); ++i) QTest::newRow(kLogs[i].name) << i;
+  }
+
+  // One row per log, so that a slow build (ThreadSanitizer's, .ci/tsan.sh) can run a few; the
+  // worst case of each pair over the rows run is printed at the end (cleanupTestCase).
   void everyPairKeepsTheContract() {
-    std::map<std::string, Worst> worst;
-    for (const Log& l : kLogs) {
-      const Dataset data = readSglog(std::string(SONARGRID_DATASETS) + l.log);
-      const ReferenceMap reference = readReference(std::string(SONARGRID_DATASETS) + l.reference);
-      ScoreOptions options;
-      options.metrics.clear();
-      for (const Checked& c : kMetrics) options.metrics.insert(c.metric);
-      for (const std::string& model : sensorModelNames()) {
-        for (const std::string& rule : updateRuleNames()) {
-          if (!compatibility(model, rule).allowed) continue;
-          MapperSettings exactSettings = settingsFor(model, rule, Precision::Exact);
-          exactSettings.pose = data.hasTruth() ? PoseSource::Truth : PoseSource::Odometry;
-          MapperSettings fastSettings = exactSettings;
-          fastSettings.precision = Precision::Fast;
-          const OccupancyMap exact = mapOf(data, exactSettings);
-          const OccupancyMap fast = mapOf(data, fastSettings);
-          const std::string pair = model + " x " + rule;
-          const QByteArray where = QByteArray::fromStdString(pair + " on " + l.name);
-          QVERIFY2(exact.observed == fast.observed, where.constData());
-          std::size_t observed = 0, differing = 0;
-          int step = 0;
-          for (std::size_t i = 0; i < exact.level.size(); ++i) {
-            if (!exact.observed[i]) continue;
-            ++observed;
-            const int d = std::abs(int(exact.level[i]) - int(fast.level[i]));
-            if (d > 0) ++differing;
-            step = std::max(step, d);
-          }
-          if (!hasFastCells(model, rule)) {  // the same rule under both: the same map
-            QVERIFY2(exact.level == fast.level, where.constData());
-            QCOMPARE(differing, std::size_t(0));
-          }
-          const double pct = observed ? 100.0 * double(differing) / double(observed) : 0.0;
-          QVERIFY2(pct <= 0.1, qPrintable(where + ": " + QByteArray::number(pct) + " %"));
-          QVERIFY2(step <= 1, where.constData());
-          Worst& w = worst[pair];
-          if (pct >= w.differingPct) w.where = l.name;
-          w.differingPct = std::max(w.differingPct, pct);
-          w.levelStep = std::max(w.levelStep, step);
-          if (!hasFastCells(model, rule)) continue;  // identical maps score identically
-          const ReferenceScore se = scoreAgainstReference(exact, reference, options);
-          const ReferenceScore sf = scoreAgainstReference(fast, reference, options);
-          for (const Checked& c : kMetrics) {
-            const std::optional<double> a = se.value(c.metric), b = sf.value(c.metric);
-            QCOMPARE(a.has_value(), b.has_value());
-            if (!a) continue;
-            const double allowed = std::max(0.005 * std::abs(*a), c.absolute);
-            const double off = std::abs(*a - *b);
-            QVERIFY2(off <= allowed,
-                     qPrintable(where + " " + metricName(c.metric) + ": exact " +
-                                QByteArray::number(*a) + ", fast " + QByteArray::number(*b)));
-            w.metricShare = std::max(w.metricShare, off / allowed);
-          }
+    QFETCH(int, log);
+    const Log& l = kLogs[log];
+    const Dataset data = readSglog(std::string(SONARGRID_DATASETS) + l.log);
+    const ReferenceMap reference = readReference(std::string(SONARGRID_DATASETS) + l.reference);
+    ScoreOptions options;
+    options.metrics.clear();
+    for (const Checked& c : kMetrics) options.metrics.insert(c.metric);
+    for (const std::string& model : sensorModelNames()) {
+      for (const std::string& rule : updateRuleNames()) {
+        if (!compatibility(model, rule).allowed) continue;
+        MapperSettings exactSettings = settingsFor(model, rule, Precision::Exact);
+        exactSettings.pose = data.hasTruth() ? PoseSource::Truth : PoseSource::Odometry;
+        MapperSettings fastSettings = exactSettings;
+        fastSettings.precision = Precision::Fast;
+        const OccupancyMap exact = mapOf(data, exactSettings);
+        const OccupancyMap fast = mapOf(data, fastSettings);
+        const std::string pair = model + " x " + rule;
+        const QByteArray where = QByteArray::fromStdString(pair + " on " + l.name);
+        QVERIFY2(exact.observed == fast.observed, where.constData());
+        std::size_t observed = 0, differing = 0;
+        int step = 0;
+        for (std::size_t i = 0; i < exact.level.size(); ++i) {
+          if (!exact.observed[i]) continue;
+          ++observed;
+          const int d = std::abs(int(exact.level[i]) - int(fast.level[i]));
+          if (d > 0) ++differing;
+          step = std::max(step, d);
+        }
+        if (!hasFastCells(model, rule)) {  // the same rule under both: the same map
+          QVERIFY2(exact.level == fast.level, where.constData());
+          QCOMPARE(differing, std::size_t(0));
+        }
+        const double pct = observed ? 100.0 * double(differing) / double(observed) : 0.0;
+        QVERIFY2(pct <= 0.1, qPrintable(where + ": " + QByteArray::number(pct) + " %"));
+        QVERIFY2(step <= 1, where.constData());
+        Worst& w = worst_[pair];
+        if (pct >= w.differingPct) w.where = l.name;
+        w.differingPct = std::max(w.differingPct, pct);
+        w.levelStep = std::max(w.levelStep, step);
+        if (!hasFastCells(model, rule)) continue;  // identical maps score identically
+        const ReferenceScore se = scoreAgainstReference(exact, reference, options);
+        const ReferenceScore sf = scoreAgainstReference(fast, reference, options);
+        for (const Checked& c : kMetrics) {
+          const std::optional<double> a = se.value(c.metric), b = sf.value(c.metric);
+          QCOMPARE(a.has_value(), b.has_value());
+          if (!a) continue;
+          const double allowed = std::max(0.005 * std::abs(*a), c.absolute);
+          const double off = std::abs(*a - *b);
+          QVERIFY2(off <= allowed,
+                   qPrintable(where + " " + metricName(c.metric) + ": exact " +
+                              QByteArray::number(*a) + ", fast " + QByteArray::number(*b)));
+          w.metricShare = std::max(w.metricShare, off / allowed);
         }
       }
     }
-    for (const auto& [pair, w] : worst) {
+  }
+
+  void cleanupTestCase() {
+    for (const auto& [pair, w] : worst_) {
       char line[200];
       std::snprintf(line, sizeof line,
                     "%-34s levels differ in %.4f %% of observed cells (worst: %s), by at most %d; "
@@ -213,6 +224,11 @@ class TestPrecision : public QObject {
     }
   }
 
+  void fastMapIsTheSameAtAnyThreadCountAndIncrementally_data() {
+    QTest::addColumn<QByteArray>("rule");
+    for (const char* rule : {"bayes", "bayes-recursive"}) QTest::newRow(rule) << QByteArray(rule);
+  }
+
   void fastMapIsTheSameAtAnyThreadCountAndIncrementally() {
     // The fast cells' bits at 1, 2, 3 and 8 threads, with the run kernels in AVX-512's eight
     // masked lanes (where the CPU has them) and in the four plain ones; scan by scan
@@ -226,52 +242,51 @@ class TestPrecision : public QObject {
       for (std::size_t i = 0; i < bits.size(); ++i) bits[i] = cells[i].bits;
       return bits;
     };
-    for (const char* rule : {"bayes", "bayes-recursive"}) {
-      const MapperSettings s = settingsFor("hpf", rule, Precision::Fast);
-      const GridSpec grid = data.fittingGrid(s.pose, 0.05);
-      std::vector<std::uint32_t> first;
-      for (const ConeLanes lanes : {ConeLanes::Avx512, ConeLanes::Four}) {
-        const ConeLanes previous = testing::limitConeLanes(lanes);
-        for (const unsigned threads : {1u, 2u, 3u, 8u}) {
-          const ScopedThreadCount scoped(threads);
-          Mapper m(data.ring, grid, s);
-          m.mapDataset(data);
-          if (first.empty())
-            first = bitsOf(m);
-          else
-            QVERIFY2(first == bitsOf(m), rule);
-        }
-        testing::limitConeLanes(previous);
+    QFETCH(QByteArray, rule);
+    const MapperSettings s = settingsFor("hpf", rule.toStdString(), Precision::Fast);
+    const GridSpec grid = data.fittingGrid(s.pose, 0.05);
+    std::vector<std::uint32_t> first;
+    for (const ConeLanes lanes : {ConeLanes::Avx512, ConeLanes::Four}) {
+      const ConeLanes previous = testing::limitConeLanes(lanes);
+      for (const unsigned threads : {1u, 2u, 3u, 8u}) {
+        const ScopedThreadCount scoped(threads);
+        Mapper m(data.ring, grid, s);
+        m.mapDataset(data);
+        if (first.empty())
+          first = bitsOf(m);
+        else
+          QVERIFY2(first == bitsOf(m), rule.constData());
       }
-      Mapper scanByScan(data.ring, grid, s);
-      for (const Scan& scan : data.scans) scanByScan.integrate(scan);
-      QVERIFY2(first == bitsOf(scanByScan), rule);
-      struct Watch final : FootprintObserver {
-        void reset(std::size_t) override {}
-        void observe(const Footprint&) override {}
-      } watch;
-      Mapper footprints(data.ring, grid, s);
-      footprints.setObserver(&watch);
-      footprints.mapDataset(data);
-      QVERIFY2(first == bitsOf(footprints), rule);
-
-      const double t = data.scans[data.scans.size() / 2].time;
-      Mapper upTo(data.ring, grid, s);
-      upTo.mapDataset(data, t);
-      Mapper upToScans(data.ring, grid, s);
-      for (const Scan& scan : data.scans) upToScans.integrate(scan, t);
-      QVERIFY2(bitsOf(upTo) == bitsOf(upToScans), rule);
-
-      const Position p = data.scans.front().odometry.position;
-      Mapper live(data.ring, GridSpec::covering(p, p, 0.05, 0.0), s);
-      const std::span<const Scan> scans(data.scans);
-      const std::size_t half = scans.size() / 2;
-      live.append(scans.first(half));
-      live.append(scans.subspan(half));
-      Mapper batch(data.ring, live.grid(), s);
-      batch.mapDataset(data);
-      QVERIFY2(bitsOf(live) == bitsOf(batch), rule);
+      testing::limitConeLanes(previous);
     }
+    Mapper scanByScan(data.ring, grid, s);
+    for (const Scan& scan : data.scans) scanByScan.integrate(scan);
+    QVERIFY2(first == bitsOf(scanByScan), rule.constData());
+    struct Watch final : FootprintObserver {
+      void reset(std::size_t) override {}
+      void observe(const Footprint&) override {}
+    } watch;
+    Mapper footprints(data.ring, grid, s);
+    footprints.setObserver(&watch);
+    footprints.mapDataset(data);
+    QVERIFY2(first == bitsOf(footprints), rule.constData());
+
+    const double t = data.scans[data.scans.size() / 2].time;
+    Mapper upTo(data.ring, grid, s);
+    upTo.mapDataset(data, t);
+    Mapper upToScans(data.ring, grid, s);
+    for (const Scan& scan : data.scans) upToScans.integrate(scan, t);
+    QVERIFY2(bitsOf(upTo) == bitsOf(upToScans), rule.constData());
+
+    const Position p = data.scans.front().odometry.position;
+    Mapper live(data.ring, GridSpec::covering(p, p, 0.05, 0.0), s);
+    const std::span<const Scan> scans(data.scans);
+    const std::size_t half = scans.size() / 2;
+    live.append(scans.first(half));
+    live.append(scans.subspan(half));
+    Mapper batch(data.ring, live.grid(), s);
+    batch.mapDataset(data);
+    QVERIFY2(bitsOf(live) == bitsOf(batch), rule.constData());
   }
 
   void aPriorOnALevelBoundaryKeepsItsLevel() {
