@@ -48,12 +48,19 @@ MetricsPanel::~MetricsPanel() = default;
 
 void MetricsPanel::setMap(std::shared_ptr<const OccupancyMap> map) {
   input_.map = std::move(map);
-  if (std::exchange(awaitingMap_, false)) {
+  if (std::exchange(awaitingMap_, false) && held_) {
     pending_ = true;
     settle_.start();
     return;
   }
   schedule();
+}
+
+void MetricsPanel::setHeld(bool held) {
+  held_ = held;
+  if (held || !settle_.isActive()) return;
+  settle_.stop();  // the map that waited for the drag to rest: the drag is over
+  start();
 }
 
 void MetricsPanel::awaitMap() {

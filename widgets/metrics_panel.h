@@ -45,10 +45,17 @@ class MetricsPanel : public QWidget {
   // than take the CPU the re-map needs (a dragged slider would otherwise score every step's map
   // while the next one is built), and nothing is computed until setMap() brings the new map or
   // resume() says none is coming. The numbers shown stay meanwhile. The map that comes is scored
-  // once kSettleMs pass without another awaitMap(): while the slider moves, nothing is scored.
+  // at once, unless a slider is held (setHeld()): then only once kSettleMs pass without another
+  // awaitMap(), so that while a slider moves nothing is scored. (A map of a slider's step arrives
+  // only when no newer step began while it was made: a newer step cancels it. Keys, the wheel and
+  // a click on the groove so get their numbers without a wait; a slow drag, whose steps do arrive,
+  // is not scored step by step.)
   static constexpr int kSettleMs = 100;
   void awaitMap();
   void resume();
+  // Whether a slider is held down (ParameterPanel::dragStarted() to dragFinished()). Letting it go
+  // scores a map that waits for the settle at once.
+  void setHeld(bool held);
 
   // The numbers shown (null before the first result).
   const MetricsResult* result() const { return result_ ? &*result_ : nullptr; }
@@ -89,8 +96,9 @@ class MetricsPanel : public QWidget {
   quint64 shownGeneration_ = 0;
   bool pending_ = false;
   bool awaitingMap_ = false;
-  QTimer settle_;  // awaitMap()'s map waits for it
-  JobQueue jobs_;  // last: destroyed (cancelled and waited for) first
+  bool held_ = false;  // setHeld()
+  QTimer settle_;      // awaitMap()'s map waits for it
+  JobQueue jobs_;      // last: destroyed (cancelled and waited for) first
 };
 
 }  // namespace sg::ui

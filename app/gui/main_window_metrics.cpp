@@ -13,6 +13,7 @@
 #include "main_window.h"
 #include "main_window_metrics.h"
 #include "metrics_panel.h"
+#include "parameter_panel.h"
 #include "remap_controller.h"
 
 namespace sg::app {
@@ -82,6 +83,13 @@ MetricsDocks installMetrics(MainWindow* window) {
   // While a re-map runs (a dragged slider), the panel scores nothing: on two cores its worker
   // would take a CPU from the re-map (the slider's latency, docs/performance.md).
   QObject::connect(remap, &ui::RemapController::started, panel, &ui::MetricsPanel::awaitMap);
+  // A held slider's maps wait for it to rest; any other change's map is scored at once.
+  if (auto* parameters = window->findChild<ui::ParameterPanel*>()) {
+    QObject::connect(parameters, &ui::ParameterPanel::dragStarted, panel,
+                     [panel] { panel->setHeld(true); });
+    QObject::connect(parameters, &ui::ParameterPanel::dragFinished, panel,
+                     [panel] { panel->setHeld(false); });
+  }
   // No map of that re-map is coming (it failed, or was stopped with nothing newer after it): the
   // panel scores the map it has.
   auto resumeIfNewest = [panel, remap](quint64 generation) {

@@ -215,10 +215,11 @@ class TestMetricsPanel : public QObject {
   }
 
   void draggedSliderScoresOnlyTheMapItStopsAt() {
-    // A dragged slider: each step starts a re-map (awaitMap) and delivers its map (setMap). The
-    // panel scores a delivered map only once MetricsPanel::kSettleMs pass without another re-map,
-    // so the steps it passes through are never scored: one computation (generation + 1) for the
-    // map of the last step. Maps A and B differ in their grids, which the result names.
+    // A dragged slider (held: setHeld): each step starts a re-map (awaitMap) and delivers its map
+    // (setMap). The panel scores a delivered map only once MetricsPanel::kSettleMs pass without
+    // another re-map, so the steps it passes through are never scored: one computation
+    // (generation + 1) for the map of the last step. Maps A and B differ in their grids, which the
+    // result names.
     GridSpec a, b;
     a.cellSize = b.cellSize = 0.1;
     a.width = 3;
@@ -231,6 +232,7 @@ class TestMetricsPanel : public QObject {
     QCOMPARE(panel.result()->spec, a);
     const quint64 before = panel.generation();
 
+    panel.setHeld(true);
     panel.awaitMap();  // step 1 re-maps
     QVERIFY(panel.busy());
     panel.setMap(std::make_shared<const OccupancyMap>(OccupancyMap::unobserved(b)));
@@ -254,6 +256,24 @@ class TestMetricsPanel : public QObject {
     panel.setMap(std::make_shared<const OccupancyMap>(OccupancyMap::unobserved(b)));
     QCoreApplication::processEvents();
     QCOMPARE(panel.generation(), before + 3);
+    QVERIFY(panel.waitForResult(10000));
+    QCOMPARE(panel.result()->spec, b);
+
+    // Let go while a map waits for the settle: it is scored at once, not kSettleMs later.
+    panel.awaitMap();
+    panel.setMap(std::make_shared<const OccupancyMap>(OccupancyMap::unobserved(a)));
+    QCOMPARE(panel.generation(), before + 3);  // waiting
+    panel.setHeld(false);
+    QCOMPARE(panel.generation(), before + 4);  // started in setHeld itself
+    QVERIFY(panel.waitForResult(10000));
+    QCOMPARE(panel.result()->spec, a);
+
+    // A change without a held slider (a key, the wheel, a click on the groove): its map is scored
+    // as soon as it arrives, without the settle.
+    panel.awaitMap();
+    panel.setMap(std::make_shared<const OccupancyMap>(OccupancyMap::unobserved(b)));
+    QCoreApplication::processEvents();  // the zero-delay start
+    QCOMPARE(panel.generation(), before + 5);
     QVERIFY(panel.waitForResult(10000));
     QCOMPARE(panel.result()->spec, b);
   }
