@@ -220,6 +220,7 @@ int runMap(Arguments& args) {
     nlohmann::ordered_json out;
     out["model"] = o.settings.model;
     out["rule"] = o.settings.rule;
+    out["precision"] = o.settings.precision == Precision::Fast ? "fast" : "exact";
     nlohmann::ordered_json params = nlohmann::ordered_json::object();
     for (const ParameterSpec& s : o.settings.parameters.specs())
       params[s.name] = o.settings.parameters.get(s.name);
@@ -242,9 +243,10 @@ int runMap(Arguments& args) {
     std::cout << out.dump() << '\n';
   } else {
     std::cout << o.log << ": " << built.readings << " readings mapped with " << o.settings.model
-              << " × " << o.settings.rule << " on " << m.spec.width << " x " << m.spec.height
-              << " cells of " << m.spec.cellSize << " m in " << built.elapsedMs << " ms; "
-              << m.filledCount() << " cells filled\n";
+              << " × " << o.settings.rule
+              << (o.settings.precision == Precision::Fast ? " (fast engine)" : "") << " on "
+              << m.spec.width << " x " << m.spec.height << " cells of " << m.spec.cellSize
+              << " m in " << built.elapsedMs << " ms; " << m.filledCount() << " cells filled\n";
     if (png) std::cout << "wrote " << *png << '\n';
     if (ros) std::cout << "wrote " << *ros << ".yaml and " << *ros << ".pgm\n";
   }

@@ -36,9 +36,9 @@ using cli_test::kCli;
 const QString kRoomLog = QStringLiteral(SONARGRID_DATASETS "/room/room.sglog");
 
 // The keys `map --json` prints, no more and no fewer (docs/cli.md).
-const QStringList kMapKeys = {"model",        "rule",         "params",
-                              "grid",         "readings",     "scans_without_truth",
-                              "cells_filled", "cv_histogram", "elapsed_ms"};
+const QStringList kMapKeys = {"model",        "rule",      "precision",           "params",
+                              "grid",         "readings",  "scans_without_truth", "cells_filled",
+                              "cv_histogram", "elapsed_ms"};
 const QStringList kGridKeys = {"width", "height", "cell_m", "origin"};
 const QStringList kParameterKeys = {"name", "symbol", "unit", "min", "max", "default", "source"};
 
@@ -441,6 +441,7 @@ void TstCli::mapPairs() {
     if (QTest::currentTestFailed()) return;
     QCOMPARE(with.value("grid"), o.value("grid"));
     QCOMPARE(with.value("readings"), o.value("readings"));
+    QCOMPARE(with.value("precision").toString(), QString(precision));  // the engine it used
     if (QString(precision) == "exact") {
       with.remove("elapsed_ms");
       QJsonObject without = o;
