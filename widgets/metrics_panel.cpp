@@ -48,7 +48,7 @@ MetricsPanel::~MetricsPanel() = default;
 
 void MetricsPanel::setMap(std::shared_ptr<const OccupancyMap> map) {
   input_.map = std::move(map);
-  if (std::exchange(awaitingMap_, false) && held_) {
+  if (std::exchange(awaitingMap_, false) && !atOnce_) {
     pending_ = true;
     settle_.start();
     return;
@@ -56,15 +56,20 @@ void MetricsPanel::setMap(std::shared_ptr<const OccupancyMap> map) {
   schedule();
 }
 
-void MetricsPanel::setHeld(bool held) {
-  held_ = held;
-  if (held || !settle_.isActive()) return;
-  settle_.stop();  // the map that waited for the drag to rest: the drag is over
+void MetricsPanel::scoreAtOnce() {
+  atOnce_ = true;
+  endSettle();
+}
+
+void MetricsPanel::endSettle() {
+  if (!settle_.isActive()) return;
+  settle_.stop();
   start();
 }
 
 void MetricsPanel::awaitMap() {
   awaitingMap_ = true;
+  atOnce_ = false;
   if (settle_.isActive()) {
     settle_.stop();
     pending_ = false;

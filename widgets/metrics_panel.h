@@ -45,17 +45,18 @@ class MetricsPanel : public QWidget {
   // than take the CPU the re-map needs (a dragged slider would otherwise score every step's map
   // while the next one is built), and nothing is computed until setMap() brings the new map or
   // resume() says none is coming. The numbers shown stay meanwhile. The map that comes is scored
-  // at once, unless a slider is held (setHeld()): then only once kSettleMs pass without another
-  // awaitMap(), so that while a slider moves nothing is scored. (A map of a slider's step arrives
-  // only when no newer step began while it was made: a newer step cancels it. Keys, the wheel and
-  // a click on the groove so get their numbers without a wait; a slow drag, whose steps do arrive,
-  // is not scored step by step.)
+  // once kSettleMs pass without another awaitMap(): while a slider moves or the timeline plays,
+  // nothing is scored.
   static constexpr int kSettleMs = 100;
   void awaitMap();
   void resume();
-  // Whether a slider is held down (ParameterPanel::dragStarted() to dragFinished()). Letting it go
-  // scores a map that waits for the settle at once.
-  void setHeld(bool held);
+  // The change that began the awaited re-map is a single one (a parameter set by a key, the
+  // wheel, a click on the groove or the spin box, not by a held slider): its map is scored as soon
+  // as it arrives, without the settle. Call it after awaitMap(), which forgets it.
+  void scoreAtOnce();
+  // The changes are over (a held slider was let go): a map waiting for the settle is scored now.
+  void endSettle();
+  bool settling() const { return settle_.isActive(); }
 
   // The numbers shown (null before the first result).
   const MetricsResult* result() const { return result_ ? &*result_ : nullptr; }
@@ -96,9 +97,9 @@ class MetricsPanel : public QWidget {
   quint64 shownGeneration_ = 0;
   bool pending_ = false;
   bool awaitingMap_ = false;
-  bool held_ = false;  // setHeld()
-  QTimer settle_;      // awaitMap()'s map waits for it
-  JobQueue jobs_;      // last: destroyed (cancelled and waited for) first
+  bool atOnce_ = false;  // scoreAtOnce(), until the next awaitMap()
+  QTimer settle_;        // awaitMap()'s map waits for it
+  JobQueue jobs_;        // last: destroyed (cancelled and waited for) first
 };
 
 }  // namespace sg::ui

@@ -510,10 +510,7 @@ void ParameterPanel::addRows(const std::vector<ParameterSpec>& specs, const QStr
     });
     // A slider held down is a drag: the settings it emits meanwhile are one edit, which ends
     // when it is let go.
-    connect(slider, &QSlider::sliderPressed, this, [this] {
-      dragging_ = true;
-      emit dragStarted();
-    });
+    connect(slider, &QSlider::sliderPressed, this, [this] { dragging_ = true; });
     connect(slider, &QSlider::sliderReleased, this, [this] {
       dragging_ = false;
       emit dragFinished();

@@ -68,8 +68,6 @@ class ParameterPanel : public QWidget {
 
  signals:
   void settingsChanged(const sg::MapperSettings& settings);
-  // A slider was pressed: the steps of a drag follow, until dragFinished().
-  void dragStarted();
   // A held slider was let go: the drag's steps are over.
   void dragFinished();
 

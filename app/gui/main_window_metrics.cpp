@@ -83,13 +83,16 @@ MetricsDocks installMetrics(MainWindow* window) {
   // While a re-map runs (a dragged slider), the panel scores nothing: on two cores its worker
   // would take a CPU from the re-map (the slider's latency, docs/performance.md).
   QObject::connect(remap, &ui::RemapController::started, panel, &ui::MetricsPanel::awaitMap);
-  // A held slider's maps wait for it to rest; any other change's map is scored at once.
-  if (auto* parameters = window->findChild<ui::ParameterPanel*>()) {
-    QObject::connect(parameters, &ui::ParameterPanel::dragStarted, panel,
-                     [panel] { panel->setHeld(true); });
-    QObject::connect(parameters, &ui::ParameterPanel::dragFinished, panel,
-                     [panel] { panel->setHeld(false); });
-  }
+  // A parameter changed once (not by a held slider) is scored as soon as its map arrives; a held
+  // slider's map, once the slider rests or is let go. Connected after the window's own connection
+  // (createDocks()), which re-maps, so that scoreAtOnce() follows that re-map's awaitMap().
+  ui::ParameterPanel* parameters = window->parameterPanel();
+  Q_ASSERT(parameters);
+  QObject::connect(parameters, &ui::ParameterPanel::settingsChanged, panel, [panel, parameters] {
+    if (!parameters->dragging()) panel->scoreAtOnce();
+  });
+  QObject::connect(parameters, &ui::ParameterPanel::dragFinished, panel,
+                   &ui::MetricsPanel::endSettle);
   // No map of that re-map is coming (it failed, or was stopped with nothing newer after it): the
   // panel scores the map it has.
   auto resumeIfNewest = [panel, remap](quint64 generation) {

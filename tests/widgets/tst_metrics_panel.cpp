@@ -7,6 +7,7 @@
 // common cells.
 
 #include <QDockWidget>
+#include <QSlider>
 #include <QStandardPaths>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -19,6 +20,7 @@
 #include "grid_view.h"
 #include "main_window.h"
 #include "metrics_panel.h"
+#include "parameter_panel.h"
 #include "remap_controller.h"
 #include "sonargrid/io/sglog.h"
 #include "sonargrid/metrics/derivative_noise.h"
@@ -215,11 +217,10 @@ class TestMetricsPanel : public QObject {
   }
 
   void draggedSliderScoresOnlyTheMapItStopsAt() {
-    // A dragged slider (held: setHeld): each step starts a re-map (awaitMap) and delivers its map
-    // (setMap). The panel scores a delivered map only once MetricsPanel::kSettleMs pass without
-    // another re-map, so the steps it passes through are never scored: one computation
-    // (generation + 1) for the map of the last step. Maps A and B differ in their grids, which the
-    // result names.
+    // A dragged slider: each step starts a re-map (awaitMap) and delivers its map (setMap). The
+    // panel scores a delivered map only once MetricsPanel::kSettleMs pass without another re-map,
+    // so the steps it passes through are never scored: one computation (generation + 1) for the
+    // map of the last step. Maps A and B differ in their grids, which the result names.
     GridSpec a, b;
     a.cellSize = b.cellSize = 0.1;
     a.width = 3;
@@ -232,7 +233,6 @@ class TestMetricsPanel : public QObject {
     QCOMPARE(panel.result()->spec, a);
     const quint64 before = panel.generation();
 
-    panel.setHeld(true);
     panel.awaitMap();  // step 1 re-maps
     QVERIFY(panel.busy());
     panel.setMap(std::make_shared<const OccupancyMap>(OccupancyMap::unobserved(b)));
@@ -259,23 +259,33 @@ class TestMetricsPanel : public QObject {
     QVERIFY(panel.waitForResult(10000));
     QCOMPARE(panel.result()->spec, b);
 
-    // Let go while a map waits for the settle: it is scored at once, not kSettleMs later.
+    // The slider let go while its map waits for the settle: scored at once, not kSettleMs later.
     panel.awaitMap();
     panel.setMap(std::make_shared<const OccupancyMap>(OccupancyMap::unobserved(a)));
-    QCOMPARE(panel.generation(), before + 3);  // waiting
-    panel.setHeld(false);
-    QCOMPARE(panel.generation(), before + 4);  // started in setHeld itself
+    QVERIFY(panel.settling());
+    QCOMPARE(panel.generation(), before + 3);
+    panel.endSettle();
+    QVERIFY(!panel.settling());
+    QCOMPARE(panel.generation(), before + 4);  // started in endSettle() itself
     QVERIFY(panel.waitForResult(10000));
     QCOMPARE(panel.result()->spec, a);
 
-    // A change without a held slider (a key, the wheel, a click on the groove): its map is scored
-    // as soon as it arrives, without the settle.
+    // A single change (a key, the wheel, the spin box): its map is scored as soon as it arrives.
     panel.awaitMap();
+    panel.scoreAtOnce();
     panel.setMap(std::make_shared<const OccupancyMap>(OccupancyMap::unobserved(b)));
+    QVERIFY(!panel.settling());
     QCoreApplication::processEvents();  // the zero-delay start
     QCOMPARE(panel.generation(), before + 5);
     QVERIFY(panel.waitForResult(10000));
     QCOMPARE(panel.result()->spec, b);
+    // ... and only that change: the next re-map's map (a timeline tick) waits for the settle.
+    panel.awaitMap();
+    panel.setMap(std::make_shared<const OccupancyMap>(OccupancyMap::unobserved(a)));
+    QVERIFY(panel.settling());
+    QVERIFY(panel.waitForResult(10000));
+    QCOMPARE(panel.generation(), before + 6);
+    QCOMPARE(panel.result()->spec, a);
   }
 
   void windowWaitsForTheNewMapBeforeScoring() {
@@ -296,6 +306,45 @@ class TestMetricsPanel : public QObject {
     const ReferenceScore expected =
         scoreAgainstReference(cliMap(data, settingsOf("hpf", "addition"), 0.1), reference);
     QCOMPARE(*panel->result()->value("iop_mm"), *expected.value(Metric::Iop));
+  }
+
+  void windowScoresASingleChangeAtOnce() {
+    // The window's wiring of the settle: a parameter changed by a key on its slider (not held) is
+    // scored as soon as its map arrives; a change from elsewhere (setMapperSettings, as a menu or
+    // the timeline makes one) waits for the settle; a slider held down waits too, until let go.
+    app::MainWindow window(GridView::Backend::Raster);
+    QVERIFY(openRoom(window, settingsOf("himm", "himm"), 0.1, true));
+    auto* panel = window.findChild<MetricsPanel*>();
+    QVERIFY(panel->waitForResult(120000));
+    QSlider* slider = window.parameterPanel()->sliderFor("p_hit");
+    QVERIFY(slider);
+    // Each change below re-maps (a new generation), so each waitForMap() waits for a map.
+    auto step = [&](QAbstractSlider::SliderAction action) {
+      const quint64 before = window.remapController()->latestGeneration();
+      slider->triggerAction(action);  // what a key or the wheel does to the slider
+      return window.remapController()->latestGeneration() == before + 1;
+    };
+    QVERIFY(step(QAbstractSlider::SliderSingleStepAdd));
+    QVERIFY(window.waitForMap(120000));  // returns right after the panel was given the map
+    QVERIFY(!panel->settling());
+    QVERIFY(panel->waitForResult(120000));
+
+    MapperSettings other = window.mapperSettings();
+    other.parameters.set("p_miss", 0.3);
+    const quint64 before = window.remapController()->latestGeneration();
+    window.setMapperSettings(other);
+    QCOMPARE(window.remapController()->latestGeneration(), before + 1);
+    QVERIFY(window.waitForMap(120000));
+    QVERIFY(panel->settling());
+    QVERIFY(panel->waitForResult(120000));
+
+    emit slider->sliderPressed();  // held: its steps wait
+    QVERIFY(step(QAbstractSlider::SliderSingleStepAdd));
+    QVERIFY(window.waitForMap(120000));
+    QVERIFY(panel->settling());
+    emit slider->sliderReleased();  // let go: scored now
+    QVERIFY(!panel->settling());
+    QVERIFY(panel->waitForResult(120000));
   }
 
   void closingMidComputationIsSafe() {
