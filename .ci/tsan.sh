@@ -40,16 +40,19 @@ long=runsGiveTheFootprintPathsBits
 rows=("hpf/addition" "hpf/bayes" "hpf/bayes-recursive" "hpf/log" "hpf/logodds" "hpf/dempster-shafer"
   "konolige/addition normalise=0" "murphy/bayes no_echo=1" "parameterized/logodds prior=0.3")
 mapfile -t functions < <("$fused" -functions | sed 's/()$//' | grep -vx "$long")
+# (a failure inside < <(…) escapes set -e: an empty list would run the named rows alone)
+((${#functions[@]} > 0)) || { echo "$fused -functions listed nothing" >&2; exit 1; }
 "$fused" "${functions[@]}" "${rows[@]/#/$long:}"
 # tst_precision: every function whole but two. Its contract runs on the three short logs (every
 # pair mapped exact and fast on each: the office and arafat-room rows take 16 of the function's 19
 # s uninstrumented, and it passed Qt Test's five-minute limit for one function under TSan on
 # 2026-12-03); its fast engine's threads, on the office log, for one rule of the two (each row maps
-# the log twelve times: 140 s under TSan), bayes-recursive, whose cells the run kernels update
+# the log fourteen times: about 120 s under TSan), bayes-recursive, whose cells the run kernels update
 # in the same code as bayes's.
 precision=build-tsan/tests/core/tst_precision
 mapfile -t functions < <("$precision" -functions | sed 's/()$//' |
   grep -vxE 'everyPairKeepsTheContract|fastMapIsTheSameAtAnyThreadCountAndIncrementally')
+((${#functions[@]} > 0)) || { echo "$precision -functions listed nothing" >&2; exit 1; }
 "$precision" "${functions[@]}" everyPairKeepsTheContract:room \
   everyPairKeepsTheContract:raschke-single everyPairKeepsTheContract:raschke-multi \
   fastMapIsTheSameAtAnyThreadCountAndIncrementally:bayes-recursive

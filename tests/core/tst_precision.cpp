@@ -7,8 +7,8 @@
 // docs/models.md): the fast map's 16 levels differ from the exact map's in at most 0.1 % of the
 // observed cells, by at most one level; every reference metric (IOP, correlation, map score, path
 // false positives, AUC) is within 0.5 % relative or 0.5 mm / 0.5 points absolute, whichever is
-// larger; both observe the same cells. The worst case of each pair over the datasets is printed
-// (qInfo) for the table in docs/models.md.
+// larger; both observe the same cells. The worst case of each pair over the logs run (all five
+// unless rows are named) is printed (qInfo) for the table in docs/models.md.
 
 #include <QtTest>
 #include <algorithm>
