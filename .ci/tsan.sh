@@ -46,9 +46,9 @@ mapfile -t functions < <("$fused" -functions | sed 's/()$//' | grep -vx "$long")
 # tst_precision: every function whole but two. Its contract runs on the three short logs (every
 # pair mapped exact and fast on each: the office and arafat-room rows take 16 of the function's 19
 # s uninstrumented, and it passed Qt Test's five-minute limit for one function under TSan on
-# 2026-12-03); its fast engine's threads, on the office log, for one rule of the two (each row maps
-# the log fourteen times: about 120 s under TSan), bayes-recursive, whose cells the run kernels update
-# in the same code as bayes's.
+# 2026-12-03); its fast engine's threads, on the office log, for one rule of the two (each row
+# maps the log fourteen times: about 120 s under TSan), bayes-recursive, whose cells the run
+# kernels update in the same code as bayes's.
 precision=build-tsan/tests/core/tst_precision
 mapfile -t functions < <("$precision" -functions | sed 's/()$//' |
   grep -vxE 'everyPairKeepsTheContract|fastMapIsTheSameAtAnyThreadCountAndIncrementally')
