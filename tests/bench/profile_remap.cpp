@@ -20,6 +20,8 @@
 // re-maps in turn on a loaded machine can differ by more than the kernels take. It prints the
 // medians of both, the median of the pairs' shares of the kernels, and the cells and runs of a
 // reading that writes.
+// With PROFILE_PRECISION=fast, the digests and the timed re-maps (not PROFILE_PARTS's) use the
+// fast engine (docs/models.md, "Exact and fast engines"); exact is the default.
 
 #include <algorithm>
 #include <chrono>
@@ -173,6 +175,9 @@ int run(int argc, char** argv) {
   sg::MapperSettings settings;
   settings.model = argv[1];
   settings.rule = argv[2];
+  // PROFILE_PRECISION=fast: the fast engine's cells (docs/models.md, "Exact and fast engines").
+  if (const char* precision = std::getenv("PROFILE_PRECISION"))
+    settings.precision = sg::precisionFromName(precision);
   sg::Mapper mapper(d.ring,
                     log ? d.fittingGrid(sg::PoseSource::Odometry, 0.05) : bench::benchmarkGrid(),
                     settings);
